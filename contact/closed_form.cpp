@@ -1,0 +1,84 @@
+#include "contact/closed_form.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/tools/roots.hpp>
+
+namespace fretwear::closed_form {
+
+constexpr double kPi = std::numbers::pi;
+
+Hertz hertz(double P, double A, double R) {
+  const double a = std::sqrt(2.0 * P * A * R / kPi);
+  return {a, 2.0 * P / (kPi * a)};
+}
+
+double Hertz::pressure(double x) const {
+  const double s = 1.0 - (x / a) * (x / a);
+  return s > 0.0 ? p0 * std::sqrt(s) : 0.0;
+}
+
+double Hertz::cell_average(double x0, double x1) const {
+  // ∫ √(1 − s²) ds = (s √(1 − s²) + asin s) / 2
+  auto I = [](double s) {
+    s = std::clamp(s, -1.0, 1.0);
+    return 0.5 * (s * std::sqrt(1.0 - s * s) + std::asin(s));
+  };
+  return p0 * a * (I(x1 / a) - I(x0 / a)) / (x1 - x0);
+}
+
+double D(double theta) { return kPi - 2.0 * theta - std::sin(2.0 * theta); }
+
+double B(double phi, double phi0) {
+  phi = std::abs(phi);
+  if (std::abs(phi - phi0) < 1e-14) {  // the logs cancel at the end of the flat
+    return (kPi - 2.0 * phi0) * std::cos(phi0) +
+           std::sin(phi0) * (std::log(std::sin(2.0 * phi0)) + std::log(std::tan(phi0)) - std::log(2.0));
+  }
+  return (kPi - 2.0 * phi0) * std::cos(phi) +
+         std::sin(phi) * std::log(std::abs(std::sin(phi + phi0) / std::sin(phi - phi0))) +
+         std::sin(phi0) * std::log(std::abs(std::tan(0.5 * (phi + phi0)) * std::tan(0.5 * (phi - phi0))));
+}
+
+RoundedPunch rounded_punch(double P, double A, double a, double R) {
+  // P A R / a² = (π − 2φ0)/(2 sin²φ0) − cot φ0 (PHYSICS.md; paper 000 eq 3), decreasing in φ0 ∈ (0, π/2).
+  const double target = P * A * R / (a * a);
+  auto f = [&](double phi0) {
+    const double s = std::sin(phi0);
+    return (kPi - 2.0 * phi0) / (2.0 * s * s) - std::cos(phi0) / s - target;
+  };
+  std::uintmax_t it = 200;
+  auto [lo, hi] = boost::math::tools::toms748_solve(f, 1e-12, 0.5 * kPi - 1e-15,
+                                                     boost::math::tools::eps_tolerance<double>(52), it);
+  const double phi0 = 0.5 * (lo + hi);
+  return {a, R, P, a / std::sin(phi0), phi0};
+}
+
+double RoundedPunch::pressure(double x) const {
+  if (std::abs(x) >= b) return 0.0;
+  const double phi = std::asin(std::abs(x) / b);
+  return (P / b) * (2.0 / kPi) * B(phi, phi0) / D(phi0);
+}
+
+double RoundedPunch::peak_x() const {
+  auto r = boost::math::tools::brent_find_minima([this](double x) { return -pressure(x); }, 0.0, b, 52);
+  return r.first;
+}
+
+double RoundedPunch::peak() const { return pressure(peak_x()); }
+
+FlatPunch flat_punch(double P, double b) { return {b, P}; }
+
+double FlatPunch::pressure(double x) const {
+  return std::abs(x) < b ? P / (kPi * std::sqrt(b * b - x * x)) : 0.0;
+}
+
+double FlatPunch::cell_average(double x0, double x1) const {
+  auto I = [this](double x) { return std::asin(std::clamp(x / b, -1.0, 1.0)); };  // ∫ dx/√(b² − x²)
+  return P / kPi * (I(x1) - I(x0)) / (x1 - x0);
+}
+
+}  // namespace fretwear::closed_form

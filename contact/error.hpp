@@ -1,0 +1,27 @@
+// Errors a user can cause (a scene, a file, a solve that does not converge). Programming mistakes are assert()s.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace fretwear {
+
+// Base of every exception fretwear throws on purpose; its message says what is wrong and what to do.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Invalid input: a scene, a profile, an option. The command line maps it to exit status 2.
+class InputError : public Error {
+ public:
+  using Error::Error;
+};
+
+// A solver stopped short of its tolerance. The command line maps it to exit status 3.
+class ConvergenceError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace fretwear

@@ -1,0 +1,29 @@
+#include "contact/half_plane_kernel.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace fretwear {
+namespace {
+std::vector<double> first_column(const Grid& g, double A, double L) {
+  const double h = g.h();
+  auto F = [L](double s) { return s == 0.0 ? 0.0 : s * std::log(std::abs(s) / L) - s; };
+  std::vector<double> c(g.n);
+  for (int k = 0; k < g.n; ++k) {
+    const double d = k * h;
+    c[k] = -(A / std::numbers::pi) * (F(d + 0.5 * h) - F(d - 0.5 * h));
+  }
+  return c;
+}
+}  // namespace
+
+HalfPlaneKernel::HalfPlaneKernel(const Grid& grid, double A)
+    : grid_(grid), A_(A), L_(grid.width()), column_(first_column(grid, A, grid.width())), fft_(column_) {}
+
+double HalfPlaneKernel::coefficient(double d) const {
+  const double h = grid_.h();
+  auto F = [this](double s) { return s == 0.0 ? 0.0 : s * std::log(std::abs(s) / L_) - s; };
+  return -(A_ / std::numbers::pi) * (F(d + 0.5 * h) - F(d - 0.5 * h));
+}
+
+}  // namespace fretwear

@@ -1,0 +1,68 @@
+// Load-controlled normal contact of two elastic half-planes on a uniform grid.
+//
+// Find p ≥ 0 on the cells and a rigid approach δ such that, with g_i = g0_i + (K p)_i − δ,
+//     g_i ≥ 0,   p_i g_i = 0,   h Σ p_i = P,
+// where K is HalfPlaneKernel's influence matrix and g0 the initial gap (+∞ where the pad has no material: those
+// cells never carry load). This is the discrete form of PHYSICS.md's normal-contact equation.
+//
+// Method: constrained conjugate gradients (Polonsky and Keer 1999, Wear 231, §2 and fig. 1): CG on the current
+// contact set with the mean gap removed (this balances δ), projection onto p ≥ 0, re-entry of overlapping cells with
+// a restart, and scaling to the load. Warm-started from the caller's p when it has the grid's size.
+//
+// Stopping criterion (ARCHITECTURE.md): the relative complementarity residual
+//     r = max( h Σ_i p_i |g_i| / (P g_max),  max_{p_i = 0} (−g_i) / g_max ) ≤ tolerance,
+// with g_max the largest finite gap on the grid; the load is balanced to round-off at every iterate.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "contact/half_plane_kernel.hpp"
+
+namespace fretwear {
+
+struct NormalSolverOptions {
+  double tolerance = 1e-8;     // on the residual r above; in (0, 1e-2]
+  int max_iterations = 20000;  // CG iterations before giving up; ≥ 1
+
+  // Empty when valid; otherwise names the field, its value and the constraint.
+  std::string validate() const;
+};
+
+enum class Termination { converged, max_iterations, non_finite, no_admissible_cell };
+std::string to_string(Termination t);
+
+struct SolveSummary {
+  Termination termination = Termination::max_iterations;
+  int iterations = 0;
+  double residual = 0.0;  // r above, at the last iterate
+  double seconds = 0.0;   // wall time of the solve
+  bool converged() const { return termination == Termination::converged; }
+  // One line: termination, iterations, residual, time.
+  std::string brief() const;
+};
+
+struct ContactState {
+  std::vector<double> p;    // pressure per cell (Pa), ≥ 0
+  std::vector<double> gap;  // g0 + K p − δ per cell (m), ≥ 0; +∞ where the pad has no material
+  double approach = 0.0;    // δ relative to HalfPlaneKernel's datum (m); not a physical output in 2D
+};
+
+class NormalSolver {
+ public:
+  // The kernel must outlive the solver. Throws InputError if the options are invalid.
+  NormalSolver(const HalfPlaneKernel& kernel, NormalSolverOptions options = {});
+
+  // Solves for load P (N/m) and initial gap g0 (one value per cell). state.p is used as the starting guess when it
+  // has one value per cell and carries load; it is overwritten with the solution.
+  SolveSummary solve(std::span<const double> g0, double P, ContactState& state) const;
+
+  const NormalSolverOptions& options() const { return options_; }
+
+ private:
+  const HalfPlaneKernel& kernel_;
+  NormalSolverOptions options_;
+};
+
+}  // namespace fretwear

@@ -1,0 +1,72 @@
+#include "contact/toeplitz_fft.hpp"
+
+#include <cassert>
+#include <mutex>
+
+#include <fftw3.h>
+
+namespace fretwear {
+namespace {
+// FFTW's planner is not thread-safe; execution of distinct plans on distinct buffers is.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+}  // namespace
+
+struct ToeplitzFFT::Plans {
+  int m = 0;                    // circulant size 2n
+  double* real = nullptr;       // m
+  fftw_complex* spec = nullptr; // m/2 + 1
+  fftw_plan forward = nullptr, inverse = nullptr;
+
+  explicit Plans(int m_) : m(m_) {
+    std::lock_guard lock(planner_mutex());
+    real = fftw_alloc_real(m);
+    spec = fftw_alloc_complex(m / 2 + 1);
+    forward = fftw_plan_dft_r2c_1d(m, real, spec, FFTW_ESTIMATE);
+    inverse = fftw_plan_dft_c2r_1d(m, spec, real, FFTW_ESTIMATE);
+  }
+  ~Plans() {
+    std::lock_guard lock(planner_mutex());
+    fftw_destroy_plan(forward);
+    fftw_destroy_plan(inverse);
+    fftw_free(real);
+    fftw_free(spec);
+  }
+};
+
+ToeplitzFFT::ToeplitzFFT(std::span<const double> first_column)
+    : n_(int(first_column.size())), plans_(std::make_unique<Plans>(2 * int(first_column.size()))) {
+  const int m = plans_->m;
+  double* c = plans_->real;
+  c[0] = first_column[0];
+  for (int k = 1; k < n_; ++k) c[k] = c[m - k] = first_column[k];
+  c[n_] = 0.0;  // never reached by a product with zero-padded input
+  fftw_execute(plans_->forward);
+  kernel_spec_.resize(m / 2 + 1);
+  for (int k = 0; k <= m / 2; ++k)
+    kernel_spec_[k] = std::complex<double>(plans_->spec[k][0], plans_->spec[k][1]) / double(m);
+}
+
+ToeplitzFFT::~ToeplitzFFT() = default;
+
+void ToeplitzFFT::apply(std::span<const double> x, std::span<double> y) const {
+  apply_spectrum(kernel_spec_, x, y);
+}
+
+void ToeplitzFFT::apply_spectrum(std::span<const std::complex<double>> spectrum, std::span<const double> x,
+                                 std::span<double> y) const {
+  assert(int(x.size()) == n_ && int(y.size()) == n_ && int(spectrum.size()) == plans_->m / 2 + 1);
+  const int m = plans_->m;
+  double* r = plans_->real;
+  std::copy(x.begin(), x.end(), r);
+  std::fill(r + n_, r + m, 0.0);
+  fftw_execute(plans_->forward);
+  auto* s = reinterpret_cast<std::complex<double>*>(plans_->spec);
+  for (int k = 0; k <= m / 2; ++k) s[k] *= spectrum[k];
+  fftw_execute(plans_->inverse);
+  std::copy(r, r + n_, y.begin());
+}
+
+}  // namespace fretwear

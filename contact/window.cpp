@@ -1,0 +1,96 @@
+#include "contact/window.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact/contact_zones.hpp"
+#include "contact/error.hpp"
+#include "contact/half_plane_kernel.hpp"
+#include "contact/load_size.hpp"
+#include "contact/normal_solver.hpp"
+
+namespace fretwear {
+namespace {
+
+constexpr double kMargin = 0.5;  // of the outer zones' half-widths, each side
+constexpr int kTrialCells = 512;
+
+// Walks from x0 in direction dir until g0 exceeds level; returns the crossing (or the support's end).
+double crossing(const Profile& profile, double x0, double dir, double level) {
+  auto [s0, s1] = profile.support();
+  double step = 1e-9;
+  double inside = x0, outside = x0 + dir * step;
+  while (profile.gap(outside) <= level) {
+    if (outside <= s0 || outside >= s1 || std::abs(outside - x0) > 1e3) return std::clamp(outside, s0, s1);
+    inside = outside;
+    step *= 2.0;
+    outside = x0 + dir * step;
+  }
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (inside + outside);
+    (profile.gap(mid) <= level ? inside : outside) = mid;
+  }
+  return std::clamp(inside, s0, s1);
+}
+
+}  // namespace
+
+Grid align_to_support(const Profile& profile, double x_min, double x_max, int cells) {
+  auto [s0, s1] = profile.support();
+  const double h0 = (x_max - x_min) / cells;
+  const bool left = std::isfinite(s0) && s0 > x_min && s0 < x_max;
+  const bool right = std::isfinite(s1) && s1 > x_min && s1 < x_max;
+  double h = h0;
+  if (left && right) h = (s1 - s0) / std::max(1.0, std::round((s1 - s0) / h0));
+  double anchor = left ? s0 : (right ? s1 : x_min);
+  const double k = std::round((anchor - x_min) / h);
+  const double lo = anchor - k * h;
+  return Grid{lo, lo + cells * h, cells};
+}
+
+WindowChoice choose_window(const Profile& profile, double A, double P, int cells) {
+  const double x_low = profile.lowest_point();
+  if (profile.symmetric_single_zone()) {
+    const double b = half_width_for_load(profile, A, P);
+    return {x_low - (1.0 + kMargin) * b, x_low + (1.0 + kMargin) * b, "load_size", b};
+  }
+
+  // Everything within A P / 2 of the lowest gap may touch; look for such places well beyond the first one.
+  const double level = 0.5 * A * P;
+  double lo = crossing(profile, x_low, -1.0, level), hi = crossing(profile, x_low, +1.0, level);
+  const double w = std::max(hi - lo, 1e-9);
+  auto [s0, s1] = profile.support();
+  const double r0 = std::max(x_low - 100.0 * w, s0), r1 = std::min(x_low + 100.0 * w, s1);
+  constexpr int kScan = 20001;
+  for (int i = 0; i < kScan; ++i) {
+    const double x = r0 + (r1 - r0) * i / (kScan - 1);
+    if (profile.gap(x) <= level) lo = std::min(lo, x), hi = std::max(hi, x);
+  }
+
+  // Trial solves: widen until the contact stays off the trial window's ends.
+  double c = 0.5 * (lo + hi), half = std::max(0.5 * (hi - lo), 1e-9);
+  for (int attempt = 0; attempt < 40; ++attempt, half *= 2.0) {
+    const Grid trial = align_to_support(profile, c - 1.5 * half, c + 1.5 * half, kTrialCells);
+    std::vector<double> g0(trial.n);
+    for (int i = 0; i < trial.n; ++i) g0[i] = profile.gap(trial.x(i));
+    HalfPlaneKernel kernel(trial, A);
+    NormalSolver solver(kernel, {.tolerance = 1e-6, .max_iterations = 5000});
+    ContactState state;
+    if (!solver.solve(g0, P, state).converged()) continue;
+    const auto zones = locate_zones(trial, state.p, g0);
+    if (zones.empty()) continue;
+    const bool touches = (zones.front().first_cell == 0 && zones.front().left.method != EdgeMethod::corner) ||
+                         (zones.back().last_cell == trial.n - 1 && zones.back().right.method != EdgeMethod::corner);
+    if (touches) continue;
+    const double xl = zones.front().left.x, xr = zones.back().right.x;
+    const double bl = 0.5 * (zones.front().right.x - xl), br = 0.5 * (xr - zones.back().left.x);
+    // Resolve the zones with at least a few trial cells; else shrink the trial window around them and redo.
+    const double margin_l = std::max(kMargin * bl, 2.0 * trial.h()), margin_r = std::max(kMargin * br, 2.0 * trial.h());
+    (void)cells;
+    return {xl - margin_l, xr + margin_r, "trial_solve", 0.0};
+  }
+  throw InputError("grid: no window up to 1 km keeps the contact off its ends for this profile and load; give "
+                   "grid.window");
+}
+
+}  // namespace fretwear

@@ -1,0 +1,31 @@
+// The default window of the grid: it covers the expected contact with a margin of half the outer zones' half-widths
+// on each side (SCENES.md, "Grid"), and puts the pad's corners (a sharp punch, a table's ends) on cell boundaries.
+//
+// - Symmetric single-zone profiles: the load–size integral gives the half-width b exactly; the window is
+//   x_low ± 1.5 b.
+// - Anything else: every x with g0(x) ≤ A P / 2 (in 2D the approach scales like A P: for a wedge this is the exact
+//   half-width, for Hertz 1.25 a) may touch; a coarse trial solve over that set, widened until the contact stays off
+//   the trial window's ends, gives the zones, and the window is their extent plus the margin.
+#pragma once
+
+#include <string>
+
+#include "contact/grid.hpp"
+#include "contact/profile.hpp"
+
+namespace fretwear {
+
+struct WindowChoice {
+  double x_min = 0.0, x_max = 0.0;  // m
+  std::string method;               // "load_size", "trial_solve" or "given"
+  double expected_half_width = 0.0; // the load–size half-width when method is load_size (m), else 0
+};
+
+// Throws InputError when the load cannot be placed (a trial contact keeps reaching the ends of a 1 km window).
+WindowChoice choose_window(const Profile& profile, double A, double P, int cells);
+
+// Shifts and stretches [x_min, x_max] by less than a cell so that the finite ends of the profile's support fall on
+// cell boundaries of an n-cell grid.
+Grid align_to_support(const Profile& profile, double x_min, double x_max, int cells);
+
+}  // namespace fretwear

@@ -1,0 +1,32 @@
+// `fretwear convergence`: the scene's normal problem on grids of doubling size, against the closed form where the
+// profile has one (Hertz, rounded punch, flat punch) and against the finest grid otherwise. What accuracy costs.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "engine/scene.hpp"
+
+namespace fretwear {
+
+struct ConvergenceRow {
+  int cells = 0, cells_in_contact = 0, iterations = 0;
+  double x_left = 0.0, x_right = 0.0, p_max = 0.0;
+  double extent_error = 0.0, p_max_error = 0.0, rms_error = 0.0;  // rms_error only against a closed form
+  double seconds = 0.0;  // wall time of the normal solve
+};
+
+struct ConvergenceStudy {
+  std::string against;  // "hertz", "rounded_punch", "flat_punch" or "finest grid"
+  std::vector<ConvergenceRow> rows;
+  // Observed order of the extent error between consecutive grids, log2(e_k / e_{k+1}).
+  std::vector<double> observed_order() const;
+  std::string table() const;  // fixed-width text
+  std::string csv() const;
+};
+
+// cells_from and cells_to are rounded to powers of two.
+ConvergenceStudy run_convergence(const Scene& scene, int cells_from, int cells_to, std::ostream* progress);
+
+}  // namespace fretwear

@@ -1,0 +1,464 @@
+#include "engine/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+namespace fretwear {
+
+using nlohmann::json;
+
+namespace {
+
+std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+std::string describe(const json& j) {
+  std::string s = j.dump(-1, ' ', true, json::error_handler_t::replace);
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return s;
+}
+
+const char* type_name(const json& j) {
+  switch (j.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return "a boolean";
+    case json::value_t::string: return "a string";
+    case json::value_t::array: return "an array";
+    case json::value_t::object: return "an object";
+    case json::value_t::binary: return "binary";
+    case json::value_t::discarded: return "nothing";
+    default: return "a number";
+  }
+}
+
+struct Bound {
+  std::function<bool(double)> ok;
+  std::string allowed;  // e.g. "> 0"
+};
+const Bound kPositive{[](double v) { return v > 0.0; }, "a number > 0"};
+const Bound kAny{[](double) { return true; }, "a finite number"};
+
+// Collects problems while reading one JSON object; every read names the full JSON path.
+class Reader {
+ public:
+  Reader(const json& obj, std::string path, std::vector<std::string>& problems)
+      : obj_(obj), path_(std::move(path)), problems_(problems) {}
+
+  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  void problem(const std::string& path, const std::string& what) { problems_.push_back(path + ": " + what); }
+
+  const json* find(const std::string& key) {
+    seen_.push_back(key);
+    auto it = obj_.find(key);
+    return it == obj_.end() ? nullptr : &*it;
+  }
+
+  std::optional<double> number(const std::string& key, std::optional<double> def, const Bound& bound = kAny) {
+    const json* v = find(key);
+    if (!v) {
+      if (!def) problem(at(key), "missing; give " + bound.allowed);
+      return def;
+    }
+    if (!v->is_number()) {
+      problem(at(key), fmt::format("{} is {}; give {}", describe(*v), type_name(*v), bound.allowed));
+      return std::nullopt;
+    }
+    const double x = v->get<double>();
+    if (!std::isfinite(x) || !bound.ok(x)) {
+      problem(at(key), fmt::format("{} is not allowed; give {}", describe(*v), bound.allowed));
+      return std::nullopt;
+    }
+    return x;
+  }
+
+  std::optional<std::string> string(const std::string& key, std::optional<std::string> def,
+                                    const std::string& allowed) {
+    const json* v = find(key);
+    if (!v) {
+      if (!def) problem(at(key), "missing; give " + allowed);
+      return def;
+    }
+    if (!v->is_string()) {
+      problem(at(key), fmt::format("{} is {}; give {}", describe(*v), type_name(*v), allowed));
+      return std::nullopt;
+    }
+    return v->get<std::string>();
+  }
+
+  std::optional<bool> boolean(const std::string& key, bool def) {
+    const json* v = find(key);
+    if (!v) return def;
+    if (!v->is_boolean()) {
+      problem(at(key), fmt::format("{} is {}; give true or false", describe(*v), type_name(*v)));
+      return std::nullopt;
+    }
+    return v->get<bool>();
+  }
+
+  // An object member; reports a missing required one or a wrong type.
+  const json* object(const std::string& key, bool required) {
+    const json* v = find(key);
+    if (!v) {
+      if (required) problem(at(key), "missing; give an object");
+      return nullptr;
+    }
+    if (!v->is_object()) {
+      problem(at(key), fmt::format("{} is {}; give an object", describe(*v), type_name(*v)));
+      return nullptr;
+    }
+    return v;
+  }
+
+  // Reports keys not read, and keys of capabilities that are not built yet.
+  void finish(const std::vector<std::pair<std::string, std::string>>& not_yet = {}) {
+    for (const auto& [key, v] : obj_.items()) {
+      auto ny = std::find_if(not_yet.begin(), not_yet.end(), [&](const auto& p) { return p.first == key; });
+      if (ny != not_yet.end()) {
+        problem(at(key), "not supported yet (" + ny->second + ")");
+      } else if (std::find(seen_.begin(), seen_.end(), key) == seen_.end()) {
+        std::vector<std::string> known = seen_;
+        for (const auto& p : not_yet) known.push_back(p.first);
+        problem(at(key), "unknown key; the keys here are " + join(known));
+      }
+    }
+  }
+
+ private:
+  const json& obj_;
+  std::string path_;
+  std::vector<std::string>& problems_;
+  std::vector<std::string> seen_;
+};
+
+constexpr int kMaxProfileDepth = 8;
+
+ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<std::string>& problems, int depth) {
+  ProfileSpec s;
+  if (!j.is_object()) {
+    problems.push_back(fmt::format("{}: {} is {}; give an object with a \"type\"", path, describe(j), type_name(j)));
+    return s;
+  }
+  Reader r(j, path, problems);
+  auto type = r.string("type", std::nullopt, "one of " + profile_type_words());
+  if (!type) return s;
+  try {
+    s.type = profile_type_from_string(*type);
+  } catch (const InputError&) {
+    r.problem(r.at("type"), fmt::format("\"{}\" is not a profile type; use one of {}", *type, profile_type_words()));
+    return s;
+  }
+  s.offset_x = r.number("offset_x", 0.0).value_or(0.0);
+  s.tilt_rad = r.number("tilt_rad", 0.0, {[](double v) { return std::abs(v) < 1.0; }, "a number in (−1, 1) rad"})
+                   .value_or(0.0);
+  const Bound angle{[](double v) { return v > 0.0 && v < 90.0; }, "an angle in (0, 90) degrees"};
+  switch (s.type) {
+    case ProfileType::cylinder:
+      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      break;
+    case ProfileType::flat_rounded:
+      s.a = r.number("a", std::nullopt, kPositive).value_or(1.0);
+      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      break;
+    case ProfileType::flat:
+      s.b = r.number("b", std::nullopt, kPositive).value_or(1.0);
+      break;
+    case ProfileType::wedge:
+      s.angle_deg = r.number("angle_deg", std::nullopt, angle).value_or(1.0);
+      break;
+    case ProfileType::rounded_wedge:
+      s.angle_deg = r.number("angle_deg", std::nullopt, angle).value_or(1.0);
+      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      break;
+    case ProfileType::wavy:
+      s.amplitude = r.number("amplitude", std::nullopt, kPositive).value_or(1.0);
+      s.wavelength = r.number("wavelength", std::nullopt, kPositive).value_or(1.0);
+      break;
+    case ProfileType::table: {
+      auto read_array = [&](const std::string& key, std::vector<double>& out) {
+        const json* v = r.find(key);
+        if (!v) return r.problem(r.at(key), "missing; give an array of at least two numbers (m)");
+        if (!v->is_array())
+          return r.problem(r.at(key), fmt::format("{} is {}; give an array of numbers (m)", describe(*v), type_name(*v)));
+        for (std::size_t i = 0; i < v->size(); ++i) {
+          const json& e = (*v)[i];
+          if (!e.is_number() || !std::isfinite(e.get<double>()))
+            return r.problem(fmt::format("{}[{}]", r.at(key), i), fmt::format("{} is not a finite number", describe(e)));
+          out.push_back(e.get<double>());
+        }
+      };
+      read_array("x", s.x);
+      read_array("h", s.h);
+      if (r.find("x") && r.find("h") && (*r.find("x")).is_array() && (*r.find("h")).is_array()) {
+        const auto nx = r.find("x")->size(), nh = r.find("h")->size();
+        if (nx < 2) r.problem(r.at("x"), fmt::format("has {} point(s); a table needs at least two", nx));
+        if (nx != nh) r.problem(r.at("h"), fmt::format("has {} values but x has {}; give one h per x", nh, nx));
+        for (std::size_t i = 1; i < s.x.size(); ++i)
+          if (!(s.x[i] > s.x[i - 1])) {
+            r.problem(fmt::format("{}[{}]", r.at("x"), i),
+                      fmt::format("{} does not exceed the previous {}; x must increase strictly", s.x[i], s.x[i - 1]));
+            break;
+          }
+      }
+      if (s.x.size() < 2 || s.x.size() != s.h.size()) s.x = {-1.0, 1.0}, s.h = {0.0, 0.0};
+      break;
+    }
+    case ProfileType::sum:
+    case ProfileType::envelope: {
+      const json* v = r.find("terms");
+      if (!v) {
+        r.problem(r.at("terms"), "missing; give an array of profiles");
+      } else if (!v->is_array() || v->empty()) {
+        r.problem(r.at("terms"), fmt::format("{} is {}; give a non-empty array of profiles", describe(*v),
+                                              v->is_array() ? "empty" : type_name(*v)));
+      } else if (depth >= kMaxProfileDepth) {
+        r.problem(r.at("terms"), fmt::format("profiles nest deeper than {} levels", kMaxProfileDepth));
+      } else {
+        for (std::size_t i = 0; i < v->size(); ++i)
+          s.terms.push_back(parse_profile((*v)[i], fmt::format("{}[{}]", r.at("terms"), i), problems, depth + 1));
+      }
+      if (s.terms.empty()) {
+        ProfileSpec placeholder;  // keeps the tree evaluable while the problem is reported
+        placeholder.R = 1.0;
+        s.terms.push_back(placeholder);
+      }
+      break;
+    }
+  }
+  r.finish();
+  return s;
+}
+
+Material parse_material(const json& j, const std::string& path, std::vector<std::string>& problems) {
+  Reader r(j, path, problems);
+  Material m;
+  m.E = r.number("E", std::nullopt, {[](double v) { return v > 0.0 && v < 1e15; }, "a Young's modulus > 0 Pa"})
+            .value_or(1.0);
+  m.nu = r.number("nu", std::nullopt,
+                  {[](double v) { return v > -1.0 && v < 0.5; }, "a Poisson's ratio in (-1, 0.5)"})
+             .value_or(0.0);
+  r.finish();
+  return m;
+}
+
+bool valid_name(const std::string& s) {
+  return !s.empty() && s.size() <= 128 && s != "." && s != ".." &&
+         std::all_of(s.begin(), s.end(), [](char c) {
+           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+         });
+}
+
+json profile_to_json(const ProfileSpec& s) {
+  json j{{"type", to_string(s.type)}};
+  switch (s.type) {
+    case ProfileType::cylinder: j["R"] = s.R; break;
+    case ProfileType::flat_rounded: j["a"] = s.a; j["R"] = s.R; break;
+    case ProfileType::flat: j["b"] = s.b; break;
+    case ProfileType::wedge: j["angle_deg"] = s.angle_deg; break;
+    case ProfileType::rounded_wedge: j["angle_deg"] = s.angle_deg; j["R"] = s.R; break;
+    case ProfileType::wavy: j["amplitude"] = s.amplitude; j["wavelength"] = s.wavelength; break;
+    case ProfileType::table: j["x"] = s.x; j["h"] = s.h; break;
+    case ProfileType::sum:
+    case ProfileType::envelope: {
+      j["terms"] = json::array();
+      for (const auto& t : s.terms) j["terms"].push_back(profile_to_json(t));
+      break;
+    }
+  }
+  j["offset_x"] = s.offset_x;
+  j["tilt_rad"] = s.tilt_rad;
+  return j;
+}
+
+}  // namespace
+
+SceneError::SceneError(std::vector<std::string> problems)
+    : InputError("the scene is invalid:\n  " + join(problems, "\n  ")), problems_(std::move(problems)) {}
+
+Scene parse_scene(const json& j, const std::string& default_name) {
+  std::vector<std::string> problems;
+  Scene s;
+  if (!j.is_object()) throw SceneError({fmt::format("(top): the scene is {}; give a JSON object", type_name(j))});
+  Reader top(j, "", problems);
+
+  s.name = top.string("name", default_name, "a name of letters, digits, '_', '-' and '.'").value_or("scene");
+  if (!valid_name(s.name))
+    top.problem("name", fmt::format("\"{}\" cannot name a folder; use letters, digits, '_', '-' and '.'", s.name));
+
+  if (auto plane = top.string("plane", "strain", "\"strain\" or \"stress\"")) {
+    try {
+      s.plane = plane_state_from_string(*plane);
+    } catch (const InputError&) {
+      top.problem("plane", fmt::format("\"{}\" is not a plane state; use \"strain\" or \"stress\"", *plane));
+    }
+  }
+
+  if (const json* m = top.object("materials", true)) {
+    Reader r(*m, "materials", problems);
+    const json* both = r.object("both", false);
+    const json* pad = r.object("pad", false);
+    const json* spec = r.object("specimen", false);
+    if (both && (pad || spec)) {
+      r.problem("materials", "give either \"both\" or \"pad\" and \"specimen\", not both forms");
+    } else if (both) {
+      s.pad = s.specimen = parse_material(*both, "materials.both", problems);
+    } else if (pad && spec) {
+      s.pad = parse_material(*pad, "materials.pad", problems);
+      s.specimen = parse_material(*spec, "materials.specimen", problems);
+      s.similar = false;
+    } else if (!pad && !spec && m->is_object()) {
+      r.problem("materials", "give \"both\" (similar bodies) or \"pad\" and \"specimen\"");
+    } else {
+      r.problem(pad ? "materials.specimen" : "materials.pad", "missing; give {\"E\": ..., \"nu\": ...}");
+    }
+    r.finish();
+  }
+
+  if (const json* p = top.find("profile")) {
+    s.profile = parse_profile(*p, "profile", problems, 0);
+  } else {
+    top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
+  }
+
+  if (const json* l = top.object("load", true)) {
+    Reader r(*l, "load", problems);
+    s.P = r.number("P", std::nullopt, {[](double v) { return v > 0.0; }, "a normal load > 0 N/m"}).value_or(1.0);
+    r.finish({{"Q", "tangential loading arrives with the cyclic partial-slip issue"},
+              {"bulk_stress", "tangential loading arrives with the cyclic partial-slip issue"},
+              {"history", "load histories arrive with the cyclic partial-slip issue"},
+              {"control", "displacement control arrives with the cyclic partial-slip issue"},
+              {"delta", "displacement control arrives with the cyclic partial-slip issue"}});
+  }
+
+  if (const json* g = top.object("grid", false)) {
+    Reader r(*g, "grid", problems);
+    if (const json* c = r.find("cells")) {
+      const bool whole = c->is_number_integer() || (c->is_number_float() && std::isfinite(c->get<double>()) &&
+                                                    c->get<double>() == std::floor(c->get<double>()));
+      if (!whole) {
+        r.problem("grid.cells", fmt::format("{} is not a whole number; give a whole number of cells from {} to {}",
+                                            describe(*c), kMinCells, kMaxCells));
+      } else if (c->get<double>() < kMinCells || c->get<double>() > kMaxCells) {
+        r.problem("grid.cells", fmt::format("{} is out of range; give a whole number of cells from {} to {}",
+                                            describe(*c), kMinCells, kMaxCells));
+      } else {
+        s.cells = int(c->get<double>());
+      }
+    }
+    if (const json* w = r.find("window")) {
+      if (!w->is_array() || w->size() != 2 || !(*w)[0].is_number() || !(*w)[1].is_number()) {
+        r.problem("grid.window", fmt::format("{} is not [x_min, x_max]; give two numbers (m)", describe(*w)));
+      } else if (!((*w)[0].get<double>() < (*w)[1].get<double>()) || !std::isfinite((*w)[0].get<double>()) ||
+                 !std::isfinite((*w)[1].get<double>())) {
+        r.problem("grid.window", fmt::format("{} is empty; give [x_min, x_max] with x_min < x_max (m)", describe(*w)));
+      } else {
+        s.window = std::pair((*w)[0].get<double>(), (*w)[1].get<double>());
+      }
+    }
+    r.finish({{"reference_depth", "displacement datums arrive with the cyclic partial-slip issue"}});
+  }
+
+  if (const json* e = top.object("effects", false)) {
+    Reader r(*e, "effects", problems);
+    r.finish({{"tangential", "the cyclic partial-slip issue adds it"},
+              {"wear", "the wear issue adds it"},
+              {"stress", "the subsurface-stress issue adds it"},
+              {"crack", "the crack issue adds it"}});
+  }
+
+  if (const json* o = top.object("output", false)) {
+    Reader r(*o, "output", problems);
+    if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
+      if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
+      s.output_dir = *dir;
+    }
+    s.plots = r.boolean("plots", true).value_or(true);
+    r.finish();
+  }
+  if (s.output_dir.empty()) s.output_dir = std::filesystem::path("output") / s.name;
+
+  top.finish({{"friction", "friction arrives with the cyclic partial-slip issue"}});
+
+  // Whole-scene checks, once the parts are readable.
+  const bool profile_ok = std::none_of(problems.begin(), problems.end(),
+                                       [](const std::string& p) { return p.rfind("profile", 0) == 0; });
+  if (profile_ok) {
+    try {
+      Profile profile(s.profile);
+      if (s.window) {
+        const double x = profile.lowest_point();
+        if (x < s.window->first || x > s.window->second)
+          problems.push_back(fmt::format("grid.window: [{}, {}] does not contain the profile's lowest point x = {} m",
+                                         s.window->first, s.window->second, x));
+      } else if (profile.periodic()) {
+        problems.push_back("grid.window: missing; a profile whose lowest point repeats (a lone waviness) needs "
+                           "[x_min, x_max] (m)");
+      }
+    } catch (const InputError& e) {
+      problems.push_back(e.what());
+    }
+  }
+  if (!problems.empty()) throw SceneError(std::move(problems));
+  return s;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw SceneError({path.string() + ": no such file"});
+  if (fs::is_directory(status)) throw SceneError({path.string() + ": is a directory; give a scene file (.json)"});
+  const auto size = fs::file_size(path, ec);
+  if (ec) throw SceneError({path.string() + ": cannot be read (" + ec.message() + ")"});
+  if (size > kMaxSceneBytes)
+    throw SceneError({fmt::format("{}: is {} bytes; a scene is at most {} bytes", path.string(), size, kMaxSceneBytes)});
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError({path.string() + ": cannot be opened for reading"});
+  std::stringstream buf;
+  buf << in.rdbuf();
+  json j;
+  try {
+    j = json::parse(buf.str());
+  } catch (const json::parse_error& e) {
+    throw SceneError({fmt::format("{}: not valid JSON (UTF-8): {}", path.string(), e.what())});
+  }
+  return parse_scene(j, path.stem().string());
+}
+
+json Scene::to_json() const {
+  json j;
+  j["name"] = name;
+  j["plane"] = to_string(plane);
+  auto mat = [](const Material& m) { return json{{"E", m.E}, {"nu", m.nu}}; };
+  if (similar)
+    j["materials"] = {{"both", mat(pad)}};
+  else
+    j["materials"] = {{"pad", mat(pad)}, {"specimen", mat(specimen)}};
+  j["profile"] = profile_to_json(profile);
+  j["load"] = {{"P", P}};
+  j["grid"] = {{"cells", cells}};
+  if (window) j["grid"]["window"] = {window->first, window->second};
+  j["effects"] = json::object();
+  j["output"] = {{"dir", output_dir.generic_string()}, {"plots", plots}};
+  return j;
+}
+
+json default_scene_json() {
+  json j = {{"name", "hertz_normal"},
+            {"plane", "strain"},
+            {"materials", {{"both", {{"E", 200e9}, {"nu", 0.3}}}}},
+            {"profile", {{"type", "cylinder"}, {"R", 0.01}}},
+            {"load", {{"P", 1.0e5}}},
+            {"grid", {{"cells", 1024}}}};
+  return parse_scene(j).to_json();
+}
+
+}  // namespace fretwear

@@ -1,0 +1,58 @@
+// A scene (SCENES.md): the bodies, the profile, the loads, the grid, the effects and the output. parse_scene()
+// validates everything at once and fills the defaults; to_json() writes the resolved scene back.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "contact/elastic_pair.hpp"
+#include "contact/error.hpp"
+#include "contact/profile.hpp"
+
+namespace fretwear {
+
+// Every problem of a scene, each "path: what is wrong; what is allowed". The command line exits with status 2.
+class SceneError : public InputError {
+ public:
+  explicit SceneError(std::vector<std::string> problems);
+  const std::vector<std::string>& problems() const { return problems_; }
+
+ private:
+  std::vector<std::string> problems_;
+};
+
+struct Scene {
+  std::string name;                      // letters, digits, '_', '-', '.'; names the output folder
+  PlaneState plane = PlaneState::strain;
+  bool similar = true;                   // materials given as "both"
+  Material pad, specimen;
+  ProfileSpec profile;
+  double P = 0.0;                        // normal load per unit length (N/m)
+  int cells = 1024;                      // grid.cells
+  std::optional<std::pair<double, double>> window;  // grid.window (m); chosen from the contact when absent
+  std::filesystem::path output_dir;      // output.dir; default output/<name>
+  bool plots = true;                     // output.plots
+
+  // The scene with every default filled in (window as resolved when given).
+  nlohmann::json to_json() const;
+};
+
+// The largest scene file read, and the grid sizes accepted.
+constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;
+constexpr int kMinCells = 16;
+constexpr int kMaxCells = 1 << 20;
+
+// Validates j as a scene; throws SceneError listing every problem. default_name names a scene without "name".
+Scene parse_scene(const nlohmann::json& j, const std::string& default_name = "scene");
+// Reads and parses a scene file; file problems (missing, a directory, too large, not JSON, not UTF-8) are
+// SceneErrors too.
+Scene load_scene(const std::filesystem::path& path);
+// The default scene, as `fretwear defaults` prints it.
+nlohmann::json default_scene_json();
+
+}  // namespace fretwear

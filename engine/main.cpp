@@ -86,7 +86,12 @@ int main(int argc, char** argv) {
     sub->add_flag("-v,--verbose", verbose, "print more detail");
   }
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, the version, or the usage error
+    return code == 0 ? 0 : kExitInvalid;
+  }
   try {
     if (*run_cmd) return run(scene_path, quiet, verbose);
     if (*validate_cmd) {

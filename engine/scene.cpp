@@ -40,6 +40,22 @@ const char* type_name(const json& j) {
   }
 }
 
+// Levenshtein distance, for "did you mean" on typos.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
 struct Bound {
   std::function<bool(double)> ok;
   std::string allowed;  // e.g. "> 0"
@@ -57,7 +73,7 @@ class Reader {
   void problem(const std::string& path, const std::string& what) { problems_.push_back(path + ": " + what); }
 
   const json* find(const std::string& key) {
-    seen_.push_back(key);
+    if (std::find(seen_.begin(), seen_.end(), key) == seen_.end()) seen_.push_back(key);
     auto it = obj_.find(key);
     return it == obj_.end() ? nullptr : &*it;
   }
@@ -127,7 +143,10 @@ class Reader {
       } else if (std::find(seen_.begin(), seen_.end(), key) == seen_.end()) {
         std::vector<std::string> known = seen_;
         for (const auto& p : not_yet) known.push_back(p.first);
-        problem(at(key), "unknown key; the keys here are " + join(known));
+        std::string hint;
+        for (const auto& k : known)
+          if (edit_distance(key, k) <= 2) hint = " (did you mean \"" + k + "\"?)";
+        problem(at(key), "unknown key" + hint + "; the keys here are " + join(known));
       }
     }
   }

@@ -1,0 +1,196 @@
+// Scene parsing: defaults, the resolved scene, and one test per kind of error, each naming its JSON path and what is
+// allowed, all problems reported at once.
+#include <string>
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/scene.hpp"
+
+using namespace fretwear;
+using nlohmann::json;
+
+namespace {
+
+json good() {
+  return {{"name", "s"},
+          {"materials", {{"both", {{"E", 200e9}, {"nu", 0.3}}}}},
+          {"profile", {{"type", "cylinder"}, {"R", 0.01}}},
+          {"load", {{"P", 1e5}}}};
+}
+
+// The problems parse_scene reports for j (empty when it is valid).
+std::vector<std::string> problems(const json& j) {
+  try {
+    parse_scene(j);
+  } catch (const SceneError& e) {
+    return e.problems();
+  }
+  return {};
+}
+
+// True when some problem starts with path and contains every fragment.
+bool reports(const json& j, const std::string& path, std::initializer_list<std::string> fragments) {
+  for (const auto& p : problems(j)) {
+    if (p.rfind(path + ":", 0) != 0) continue;
+    bool all = true;
+    for (const auto& f : fragments) all = all && p.find(f) != std::string::npos;
+    if (all) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("a minimal scene gets every default") {
+  const Scene s = parse_scene(good());
+  CHECK(s.plane == PlaneState::strain);
+  CHECK(s.cells == 1024);
+  CHECK_FALSE(s.window);
+  CHECK(s.output_dir == std::filesystem::path("output/s"));
+  CHECK(s.plots);
+  const json r = s.to_json();
+  CHECK(r["profile"]["offset_x"] == 0.0);
+  CHECK(r["grid"]["cells"] == 1024);
+  // The resolved scene parses back to the same scene.
+  CHECK(parse_scene(r).to_json() == r);
+}
+
+TEST_CASE("the default scene is valid and resolves to itself") {
+  const json d = default_scene_json();
+  CHECK(parse_scene(d).to_json() == d);
+}
+
+TEST_CASE("a scene without a name takes the file's") {
+  json j = good();
+  j.erase("name");
+  CHECK(parse_scene(j, "from_file").name == "from_file");
+}
+
+TEST_CASE("unknown keys are errors that list the known ones") {
+  json j = good();
+  j["profile"]["radius"] = 0.01;
+  j["lod"] = 1;
+  CHECK(reports(j, "profile.radius", {"unknown key", "R"}));
+  CHECK(reports(j, "lod", {"unknown key", "load"}));
+}
+
+TEST_CASE("missing keys") {
+  json j = good();
+  j.erase("load");
+  j["materials"]["both"].erase("E");
+  j["profile"].erase("R");
+  CHECK(reports(j, "load", {"missing"}));
+  CHECK(reports(j, "materials.both.E", {"missing"}));
+  CHECK(reports(j, "profile.R", {"missing", "> 0"}));
+}
+
+TEST_CASE("wrong types") {
+  json j = good();
+  j["load"]["P"] = "100 kN";
+  j["profile"]["R"] = json::array({1});
+  j["materials"] = 3;
+  j["output"] = {{"plots", "yes"}};
+  CHECK(reports(j, "load.P", {"a string", "> 0"}));
+  CHECK(reports(j, "profile.R", {"an array"}));
+  CHECK(reports(j, "materials", {"a number", "object"}));
+  CHECK(reports(j, "output.plots", {"true or false"}));
+  CHECK(problems(json::array({1, 2})).at(0).find("JSON object") != std::string::npos);
+}
+
+TEST_CASE("impossible physics: E ≤ 0, ν outside (−1, 0.5), P ≤ 0, R ≤ 0") {
+  json j = good();
+  j["materials"] = {{"pad", {{"E", 0}, {"nu", 0.3}}}, {"specimen", {{"E", 2e11}, {"nu", 0.5}}}};
+  j["load"]["P"] = -1;
+  j["profile"]["R"] = 0;
+  CHECK(reports(j, "materials.pad.E", {"> 0"}));
+  CHECK(reports(j, "materials.specimen.nu", {"(-1, 0.5)"}));
+  CHECK(reports(j, "load.P", {"> 0"}));
+  CHECK(reports(j, "profile.R", {"> 0"}));
+  CHECK(problems(j).size() == 4);  // every problem at once
+}
+
+TEST_CASE("materials: both, or pad and specimen") {
+  json j = good();
+  j["materials"]["pad"] = {{"E", 1e11}, {"nu", 0.3}};
+  CHECK(reports(j, "materials", {"not both"}));
+  j["materials"].erase("both");
+  CHECK(reports(j, "materials.specimen", {"missing"}));
+}
+
+TEST_CASE("tables: at least two points, x increasing, one h per x") {
+  json j = good();
+  j["profile"] = {{"type", "table"}, {"x", {0.0}}, {"h", {0.0}}};
+  CHECK(reports(j, "profile.x", {"at least two"}));
+  j["profile"] = {{"type", "table"}, {"x", {0.0, 1e-3, 1e-3}}, {"h", {0.0, 1e-6, 2e-6}}};
+  CHECK(reports(j, "profile.x[2]", {"increase"}));
+  j["profile"] = {{"type", "table"}, {"x", {0.0, 1e-3}}, {"h", {0.0}}};
+  CHECK(reports(j, "profile.h", {"one h per x"}));
+  j["profile"] = {{"type", "table"}, {"x", {0.0, "a"}}, {"h", {0.0, 0.0}}};
+  CHECK(reports(j, "profile.x[1]", {"finite number"}));
+}
+
+TEST_CASE("enum words list what is accepted") {
+  json j = good();
+  j["profile"]["type"] = "cylindre";
+  j["plane"] = "strane";
+  CHECK(reports(j, "profile.type", {"cylinder", "flat_rounded", "envelope"}));
+  CHECK(reports(j, "plane", {"\"strain\" or \"stress\""}));
+}
+
+TEST_CASE("nested profiles report the path of the term") {
+  json j = good();
+  j["profile"] = {{"type", "sum"},
+                  {"terms", {{{"type", "cylinder"}, {"R", 0.01}}, {{"type", "wavy"}, {"amplitude", -1}}}}};
+  CHECK(reports(j, "profile.terms[1].amplitude", {"> 0"}));
+  CHECK(reports(j, "profile.terms[1].wavelength", {"missing"}));
+  j["profile"] = {{"type", "envelope"}, {"terms", json::array()}};
+  CHECK(reports(j, "profile.terms", {"non-empty"}));
+}
+
+TEST_CASE("grid: at least 16 whole cells, and a window that contains the lowest point") {
+  json j = good();
+  j["grid"] = {{"cells", 8}};
+  CHECK(reports(j, "grid.cells", {"16"}));
+  j["grid"] = {{"cells", 100.5}};
+  CHECK(reports(j, "grid.cells", {"whole number"}));
+  j["grid"] = {{"cells", 1e9}};
+  CHECK(reports(j, "grid.cells", {"out of range"}));
+  j["grid"] = {{"window", {1e-3, 2e-3}}};
+  CHECK(reports(j, "grid.window", {"lowest point"}));
+  j["grid"] = {{"window", {1e-3, -1e-3}}};
+  CHECK(reports(j, "grid.window", {"x_min < x_max"}));
+  j["grid"] = {{"window", {1e-3}}};
+  CHECK(reports(j, "grid.window", {"[x_min, x_max]"}));
+}
+
+TEST_CASE("a lone waviness needs a window") {
+  json j = good();
+  j["profile"] = {{"type", "wavy"}, {"amplitude", 1e-6}, {"wavelength", 1e-3}};
+  CHECK(reports(j, "grid.window", {"missing"}));
+  j["grid"] = {{"window", {-5e-4, 5e-4}}};
+  CHECK(problems(j).empty());
+}
+
+TEST_CASE("a tilt steeper than the flanks has no lowest point") {
+  json j = good();
+  j["profile"] = {{"type", "wedge"}, {"angle_deg", 0.01}, {"tilt_rad", 0.5}};
+  CHECK(reports(j, "profile", {"no lowest point"}));
+}
+
+TEST_CASE("keys of capabilities not built yet are reported as such, never ignored") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["effects"] = {{"wear", json::object()}, {"tangential", json::object()}};
+  CHECK(reports(j, "friction", {"not supported yet"}));
+  CHECK(reports(j, "load.Q", {"not supported yet"}));
+  CHECK(reports(j, "effects.wear", {"not supported yet"}));
+  CHECK(reports(j, "effects.tangential", {"not supported yet"}));
+}
+
+TEST_CASE("names must make a folder name") {
+  json j = good();
+  j["name"] = "../escape";
+  CHECK(reports(j, "name", {"folder"}));
+}

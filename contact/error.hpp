@@ -24,4 +24,10 @@ class ConvergenceError : public Error {
   using Error::Error;
 };
 
+// A scene asks for something fretwear cannot compute yet (a route or regime not built). Exit status 2.
+class UnsupportedError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 }  // namespace fretwear

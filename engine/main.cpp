@@ -36,6 +36,17 @@ int run(const std::string& path, bool quiet, bool verbose) {
                                  c["closed_form"]["extent_error"].get<double>(),
                                  c["closed_form"]["p_max_error"].get<double>(),
                                  c["closed_form"]["rms_error"].get<double>());
+      if (summary.contains("cycle")) {
+        const auto& cy = summary["cycle"];
+        std::cout << fmt::format("  cycle ({}, {} route): Q/fP = {:.4g}", cy["regime"].get<std::string>(),
+                                 cy["route"].get<std::string>(), cy["Q_over_fP"].get<double>());
+        if (!cy["stick_zone"].is_null())
+          std::cout << fmt::format(", stick zone [{:.6e}, {:.6e}] m, slip range {:.4e} m, energy {:.4e} J/m",
+                                   cy["stick_zone"][0].get<double>(), cy["stick_zone"][1].get<double>(),
+                                   cy["slip_max"].get<double>(), cy["dissipated_energy"].get<double>());
+        if (cy.contains("message")) std::cout << "\n  " << cy["message"].get<std::string>();
+        std::cout << "\n";
+      }
       std::cout << "results in " << scene.output_dir.string() << "/\n";
     }
   } catch (const ConvergenceError& e) {

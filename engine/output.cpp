@@ -103,6 +103,58 @@ set key top right
   return s;
 }
 
+std::string cycle_csv(const NormalResult& n, const CycleResult& c) {
+  std::string s = "x_m,p_Pa,q_top_Pa,q_unloaded_Pa,q_bottom_Pa,q_reloaded_Pa,slip_range_m,slip_per_cycle_m,"
+                  "energy_density_J_m2\n";
+  for (int i = 0; i < n.grid.n; ++i)
+    s += fmt::format("{},{},{},{},{},{},{},{},{}\n", num(n.grid.x(i)), num(n.state.p[i]), num(c.q_top[i]),
+                     num(c.q_unloaded[i]), num(c.q_bottom[i]), num(c.q_reloaded[i]), num(c.slip_range[i]),
+                     num(c.slip_travelled[i]), num(c.energy_density[i]));
+  return s;
+}
+
+std::string cycle_plot_script(const Scene& scene, const NormalResult& n, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  std::string head = fmt::format(R"(# The load cycle. Re-run with: gnuplot cycle.gp
+set datafile separator ','
+set xlabel 'x (mm)'
+set grid
+set key outside right top
+set xrange [{}:{}]
+)", n.grid.x_min * 1e3, n.grid.x_max * 1e3);
+  std::string marks;
+  if (c.stick_zone)
+    marks = fmt::format("set object 1 rect from {},graph 0 to {},graph 1 back fc rgb '#eeeeee' fs solid noborder\n",
+                        c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
+  const double f = st.f;
+  std::string s = head + marks;
+  s += fmt::format("set title \"{}: shear traction at the four phases (Q/fP = {:.3g}, f = {:.3g}; grey: stick zone)\" "
+                   "noenhanced\n", scene.name, st.Q_max / (f * scene.P), f);
+  s += "set ylabel 'shear traction q (MPa)'\n";
+  s += fmt::format(
+      "plot 'cycle.csv' skip 1 using ($1*1e3):({0}*$2*1e-6) with lines dt 3 lc rgb '#888888' title '±f p', "
+      "'' skip 1 using ($1*1e3):(-{0}*$2*1e-6) with lines dt 3 lc rgb '#888888' notitle, "
+      "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+Q)', "
+      "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded (Q = 0)', "
+      "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-Q)', "
+      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded (Q = 0)'\n",
+      f);
+  const std::string traction_plot = s.substr(s.find("plot 'cycle.csv'"));
+  std::string out = s.substr(0, s.find("plot 'cycle.csv'"));
+  out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'traction.svg'\n" + traction_plot;
+  out += "set terminal pngcairo size 1000,560 font 'sans,11'\nset output 'traction.png'\nreplot\nunset output\n";
+  out += fmt::format("set title \"{}: slip per cycle (range and distance travelled)\" noenhanced\n", scene.name);
+  out += "set ylabel 'slip (µm)'\nset y2label 'frictional energy per cycle (J/m²)'\nset y2tics\nset ytics nomirror\n";
+  const std::string slip_plot =
+      "plot 'cycle.csv' skip 1 using ($1*1e3):($7*1e6) with lines lw 1.5 lc rgb '#1f77b4' title 'slip range "
+      "(peak to peak)', '' skip 1 using ($1*1e3):($8*1e6) with lines lw 1.5 dt 2 lc rgb '#1f77b4' title 'slip "
+      "travelled per cycle', '' skip 1 using ($1*1e3):9 axes x1y2 with lines lw 1.5 lc rgb '#d62728' title "
+      "'energy density'\n";
+  out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'slip.svg'\n" + slip_plot;
+  out += "set terminal pngcairo size 1000,560 font 'sans,11'\nset output 'slip.png'\nreplot\nunset output\n";
+  return out;
+}
+
 void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std::string, std::string>>& rows) {
   if (j.is_object()) {
     for (const auto& [k, v] : j.items()) flatten(v, prefix.empty() ? k : prefix + "." + k, rows);
@@ -111,7 +163,7 @@ void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std
   }
 }
 
-std::string index_html(const Scene& scene, const json& summary, bool plotted) {
+std::string index_html(const Scene& scene, const json& summary, const std::vector<std::string>& plots) {
   std::vector<std::pair<std::string, std::string>> rows;
   flatten(summary, "", rows);
   std::string s = fmt::format(R"(<!doctype html>
@@ -122,7 +174,8 @@ table{{border-collapse:collapse}}td{{border-bottom:1px solid #ddd;padding:2px 10
 <p>fretwear {1}. Files: <a href="summary.json">summary.json</a>, <a href="scene.resolved.json">scene.resolved.json</a>,
 <a href="contact.csv">contact.csv</a>.</p>
 )", scene.name, summary.value("version", ""));
-  if (plotted) s += "<h2>Pressure</h2><img src=\"pressure.svg\" alt=\"pressure against x\" width=\"900\">\n";
+  for (const auto& plot : plots)
+    if (plot.ends_with(".svg")) s += fmt::format("<p><img src=\"{0}\" alt=\"{0}\" width=\"900\"></p>\n", plot);
   s += "<h2>Summary</h2><table>\n";
   for (const auto& [k, v] : rows) s += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", k, v);
   s += "</table></body></html>\n";
@@ -137,14 +190,21 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
   resolved.window = std::pair(result.normal.grid.x_min, result.normal.grid.x_max);
   out.write_json("scene.resolved.json", resolved.to_json());
   out.write("contact.csv", contact_csv(result.normal));
-  bool plotted = false;
+  const bool slips = result.cycle && result.cycle->result.regime != Regime::gross_slip;
+  if (slips) out.write("cycle.csv", cycle_csv(result.normal, result.cycle->result));
+  std::vector<std::string> plots;
   if (scene.plots) {
     out.write("pressure.gp", pressure_plot_script(scene, result.normal));
-    plotted = run_gnuplot(out.path(""), "pressure.gp");
+    if (run_gnuplot(out.path(""), "pressure.gp")) plots.insert(plots.end(), {"pressure.svg", "pressure.png"});
+    if (slips) {
+      out.write("cycle.gp", cycle_plot_script(scene, result.normal, *result.cycle));
+      if (run_gnuplot(out.path(""), "cycle.gp"))
+        plots.insert(plots.end(), {"traction.svg", "traction.png", "slip.svg", "slip.png"});
+    }
   }
-  summary["plots"] = plotted ? json::array({"pressure.svg", "pressure.png"}) : json::array();
+  summary["plots"] = plots;
   out.write_json("summary.json", summary);
-  out.write("index.html", index_html(scene, summary, plotted));
+  out.write("index.html", index_html(scene, summary, plots));
   return summary;
 }
 

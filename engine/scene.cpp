@@ -299,6 +299,21 @@ json profile_to_json(const ProfileSpec& s) {
 
 }  // namespace
 
+std::string to_string(TangentialRoute r) {
+  switch (r) {
+    case TangentialRoute::automatic: return "auto";
+    case TangentialRoute::analogy: return "analogy";
+    case TangentialRoute::incremental: return "incremental";
+  }
+  return "?";
+}
+
+double Scene::Q_max() const {
+  if (Q_amplitude) return *Q_amplitude;
+  if (Q_ratio && friction) return *Q_ratio * *friction * P;
+  return 0.0;
+}
+
 SceneError::SceneError(std::vector<std::string> problems)
     : InputError("the scene is invalid:\n  " + join(problems, "\n  ")), problems_(std::move(problems)) {}
 
@@ -347,12 +362,33 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
   }
 
+  if (top.find("friction"))
+    s.friction = top.number("friction", std::nullopt,
+                            {[](double v) { return v > 0.0 && v <= 10.0; }, "a friction coefficient in (0, 10]"});
+
   if (const json* l = top.object("load", true)) {
     Reader r(*l, "load", problems);
     s.P = r.number("P", std::nullopt, {[](double v) { return v > 0.0; }, "a normal load > 0 N/m"}).value_or(1.0);
-    r.finish({{"Q", "tangential loading arrives with the cyclic partial-slip issue"},
-              {"bulk_stress", "tangential loading arrives with the cyclic partial-slip issue"},
-              {"history", "load histories arrive with the cyclic partial-slip issue"},
+    if (const json* q = r.object("Q", false)) {
+      Reader rq(*q, "load.Q", problems);
+      const bool has_amplitude = q->contains("amplitude"), has_ratio = q->contains("ratio");
+      const Bound non_negative{[](double v) { return v >= 0.0; }, "a number >= 0"};
+      if (has_amplitude == has_ratio) {
+        rq.problem("load.Q", "give exactly one of \"amplitude\" (N/m) or \"ratio\" (Q/(fP))");
+        rq.find("amplitude"), rq.find("ratio");
+      } else if (has_amplitude) {
+        s.Q_amplitude = rq.number("amplitude", std::nullopt, non_negative);
+      } else {
+        s.Q_ratio = rq.number("ratio", std::nullopt, non_negative);
+      }
+      rq.finish();
+    }
+    if (const json* b = r.object("bulk_stress", false)) {
+      Reader rb(*b, "load.bulk_stress", problems);
+      s.bulk_stress = rb.number("amplitude", 0.0).value_or(0.0);
+      rb.finish();
+    }
+    r.finish({{"history", "load histories arrive with the cyclic partial-slip issue"},
               {"control", "displacement control arrives with the cyclic partial-slip issue"},
               {"delta", "displacement control arrives with the cyclic partial-slip issue"}});
   }
@@ -387,8 +423,28 @@ Scene parse_scene(const json& j, const std::string& default_name) {
 
   if (const json* e = top.object("effects", false)) {
     Reader r(*e, "effects", problems);
-    r.finish({{"tangential", "the cyclic partial-slip issue adds it"},
-              {"wear", "the wear issue adds it"},
+    if (const json* t = r.object("tangential", false)) {
+      Reader rt(*t, "effects.tangential", problems);
+      TangentialEffect effect;
+      if (auto route = rt.string("route", "auto", "\"auto\", \"analogy\" or \"incremental\"")) {
+        if (*route == "auto") {
+          effect.route = TangentialRoute::automatic;
+        } else if (*route == "analogy") {
+          effect.route = TangentialRoute::analogy;
+        } else if (*route == "incremental") {
+          rt.problem("effects.tangential.route", "\"incremental\" is not supported yet; use \"auto\" or \"analogy\"");
+        } else {
+          rt.problem("effects.tangential.route",
+                     fmt::format("\"{}\" is not a route; use \"auto\", \"analogy\" or \"incremental\"", *route));
+        }
+      }
+      effect.increments = int(rt.number("increments", 40.0, {[](double v) { return v >= 4 && v <= 100000 && v == std::floor(v); },
+                                                           "a whole number of increments from 4 to 100000"})
+                                  .value_or(40.0));
+      rt.finish();
+      s.tangential = effect;
+    }
+    r.finish({{"wear", "the wear issue adds it"},
               {"stress", "the subsurface-stress issue adds it"},
               {"crack", "the crack issue adds it"}});
   }
@@ -404,7 +460,25 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   }
   if (s.output_dir.empty()) s.output_dir = std::filesystem::path("output") / s.name;
 
-  top.finish({{"friction", "friction arrives with the cyclic partial-slip issue"}});
+  top.finish();
+
+  // What the effects need.
+  if (s.tangential) {
+    if (!s.friction) problems.push_back("friction: missing; effects.tangential needs a friction coefficient in (0, 10]");
+    if (!s.Q_amplitude && !s.Q_ratio)
+      problems.push_back("load.Q: missing; effects.tangential needs {\"amplitude\": Q (N/m)} or {\"ratio\": Q/(fP)}");
+    const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
+    if (std::abs(pair.beta()) > 1e-12)
+      problems.push_back(fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the normal and "
+                                     "tangential problems and need the incremental route, which is not supported yet",
+                                     pair.beta()));
+  } else {
+    if (s.Q_amplitude || s.Q_ratio)
+      problems.push_back("load.Q: given, but no effect uses it; add \"tangential\": {} to effects or remove load.Q");
+    if (s.bulk_stress != 0.0)
+      problems.push_back("load.bulk_stress: given, but no effect uses it; add \"tangential\": {} to effects");
+    if (s.friction) problems.push_back("friction: given, but no effect uses it; add \"tangential\": {} to effects");
+  }
 
   // Whole-scene checks, once the parts are readable.
   const bool profile_ok = std::none_of(problems.begin(), problems.end(),
@@ -463,9 +537,15 @@ json Scene::to_json() const {
     j["materials"] = {{"pad", mat(pad)}, {"specimen", mat(specimen)}};
   j["profile"] = profile_to_json(profile);
   j["load"] = {{"P", P}};
+  if (Q_amplitude) j["load"]["Q"] = {{"amplitude", *Q_amplitude}};
+  if (Q_ratio) j["load"]["Q"] = {{"ratio", *Q_ratio}};
+  if (tangential) j["load"]["bulk_stress"] = {{"amplitude", bulk_stress}};
+  if (friction) j["friction"] = *friction;
   j["grid"] = {{"cells", cells}};
   if (window) j["grid"]["window"] = {window->first, window->second};
   j["effects"] = json::object();
+  if (tangential)
+    j["effects"]["tangential"] = {{"route", to_string(tangential->route)}, {"increments", tangential->increments}};
   j["output"] = {{"dir", output_dir.generic_string()}, {"plots", plots}};
   return j;
 }

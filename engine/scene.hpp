@@ -26,6 +26,15 @@ class SceneError : public InputError {
   std::vector<std::string> problems_;
 };
 
+// effects.tangential: one steady load cycle of partial slip.
+enum class TangentialRoute { automatic, analogy, incremental };
+std::string to_string(TangentialRoute r);  // "auto", "analogy", "incremental"
+
+struct TangentialEffect {
+  TangentialRoute route = TangentialRoute::automatic;
+  int increments = 40;  // per cycle, for the incremental route
+};
+
 struct Scene {
   std::string name;                      // letters, digits, '_', '-', '.'; names the output folder
   PlaneState plane = PlaneState::strain;
@@ -33,6 +42,14 @@ struct Scene {
   Material pad, specimen;
   ProfileSpec profile;
   double P = 0.0;                        // normal load per unit length (N/m)
+  std::optional<double> friction;        // Coulomb coefficient f (needed by tangential effects)
+  std::optional<double> Q_amplitude;     // load.Q.amplitude (N/m)
+  std::optional<double> Q_ratio;         // load.Q.ratio = Q/(fP)
+  double bulk_stress = 0.0;              // load.bulk_stress.amplitude: σ in the specimen in phase with Q (Pa)
+  std::optional<TangentialEffect> tangential;
+
+  // Q at the top of the cycle (N/m), from the amplitude or the ratio; 0 without a tangential load.
+  double Q_max() const;
   int cells = 1024;                      // grid.cells
   std::optional<std::pair<double, double>> window;  // grid.window (m); chosen from the contact when absent
   std::filesystem::path output_dir;      // output.dir; default output/<name>

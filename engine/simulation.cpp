@@ -64,25 +64,35 @@ std::optional<Reference> closed_form_reference(const Scene& scene, const Elastic
 
 }  // namespace
 
-NormalResult solve_normal(const Scene& scene, int cells) {
+Model make_model(const Scene& scene, int cells) {
   if (cells <= 0) cells = scene.cells;
-  const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
-  const Profile profile(scene.profile);
-  NormalResult r;
+  Model m{ElasticPair(scene.pad, scene.specimen, scene.plane), Profile(scene.profile), Grid{}, WindowChoice{}, {},
+          nullptr};
   if (scene.window) {
-    r.window = {scene.window->first, scene.window->second, "given", 0.0};
-    r.grid = Grid{scene.window->first, scene.window->second, cells};
+    m.window = {scene.window->first, scene.window->second, "given", 0.0};
+    m.grid = Grid{scene.window->first, scene.window->second, cells};
   } else {
-    r.window = choose_window(profile, pair.A(), scene.P, cells);
-    r.grid = align_to_support(profile, r.window.x_min, r.window.x_max, cells);
+    m.window = choose_window(m.profile, m.pair.A(), scene.P, cells);
+    m.grid = align_to_support(m.profile, m.window.x_min, m.window.x_max, cells);
   }
-  if (profile.symmetric_single_zone()) r.load_size_half_width = half_width_for_load(profile, pair.A(), scene.P);
+  m.g0.resize(m.grid.n);
+  for (int i = 0; i < m.grid.n; ++i) m.g0[i] = m.profile.gap(m.grid.x(i));
+  m.kernel = std::make_unique<HalfPlaneKernel>(m.grid, m.pair.A());
+  return m;
+}
 
+NormalResult solve_normal(const Scene& scene, int cells) { return solve_normal(scene, make_model(scene, cells)); }
+
+NormalResult solve_normal(const Scene& scene, const Model& model) {
+  const ElasticPair& pair = model.pair;
+  const Profile& profile = model.profile;
+  NormalResult r;
+  r.window = model.window;
+  r.grid = model.grid;
+  if (profile.symmetric_single_zone()) r.load_size_half_width = half_width_for_load(profile, pair.A(), scene.P);
   const Grid& g = r.grid;
-  r.g0.resize(g.n);
-  for (int i = 0; i < g.n; ++i) r.g0[i] = profile.gap(g.x(i));
-  const HalfPlaneKernel kernel(g, pair.A());
-  const NormalSolver solver(kernel);
+  r.g0 = model.g0;
+  const NormalSolver solver(*model.kernel);
   r.summary = solver.solve(r.g0, scene.P, r.state);
   if (!r.summary.converged())
     throw ConvergenceError(fmt::format("normal contact: the solve stopped ({}) with residual {:.3g} above the "
@@ -105,11 +115,34 @@ NormalResult solve_normal(const Scene& scene, int cells) {
   return r;
 }
 
+CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal) {
+  CycleStage stage;
+  stage.route = "analogy";  // the only route built; scene validation keeps out what it cannot do
+  stage.f = *scene.friction;
+  stage.Q_max = scene.Q_max();
+  stage.bulk_stress = scene.bulk_stress;
+  const ElasticPair& pair = model.pair;
+  const double bulk_strain = scene.bulk_stress * (pair.kappa_specimen() + 1.0) / (8.0 * pair.mu_specimen());
+  const TangentialSolver solver(*model.kernel);
+  stage.result = solver.solve_cycle(model.g0, normal.state, normal.zones,
+                                    {scene.P, stage.Q_max, stage.f, bulk_strain});
+  if (stage.result.regime == Regime::reverse_slip)
+    throw UnsupportedError("effects.tangential: " + stage.result.message +
+                           "; the incremental route is not supported yet (issue 3)");
+  return stage;
+}
+
 RunResult Simulation::run() const {
   const auto t0 = std::chrono::steady_clock::now();
   RunResult result;
-  result.normal = solve_normal(scene_);
+  const Model model = make_model(scene_);
+  result.normal = solve_normal(scene_, model);
   result.timings.normal = seconds_since(t0);
+  if (scene_.tangential) {
+    const auto t1 = std::chrono::steady_clock::now();
+    result.cycle = solve_cycle(scene_, model, result.normal);
+    result.timings.tangential = seconds_since(t1);
+  }
   result.timings.total = seconds_since(t0);
   return result;
 }
@@ -142,11 +175,37 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
                               {"p_max", ref.p_max},     {"extent_error", ref.extent_error},
                               {"p_max_error", ref.p_max_error}, {"rms_error", ref.rms_error}};
   }
-  return {
+  json effects_run = {"normal"};
+  json timings = {{"total", result.timings.total}, {"normal", result.timings.normal}};
+  json cycle;
+  if (result.cycle) {
+    const CycleStage& st = *result.cycle;
+    const CycleResult& c = st.result;
+    effects_run.push_back("tangential");
+    timings["tangential"] = *result.timings.tangential;
+    auto interval = [](const std::optional<Interval>& i) { return i ? json{i->first, i->second} : json(nullptr); };
+    json stick_zones = json::array();
+    for (const auto& z : c.stick_zones) stick_zones.push_back({z.first, z.second});
+    const bool slips = c.regime != Regime::gross_slip;
+    cycle = {{"route", st.route},
+             {"regime", to_string(c.regime)},
+             {"Q_max", st.Q_max},
+             {"Q_over_fP", st.Q_max / (st.f * scene.P)},
+             {"friction", st.f},
+             {"bulk_stress", st.bulk_stress},
+             {"stick_zone", interval(c.stick_zone)},
+             {"stick_zones", stick_zones},
+             {"stick_zone_unloaded", interval(c.stick_zone_unloaded)},
+             {"dissipated_energy", slips ? json(c.dissipated_energy) : json(nullptr)},
+             {"slip_max", slips ? json(c.slip_max) : json(nullptr)},
+             {"corrective_solves", c.solves.size()}};
+    if (!c.message.empty()) cycle["message"] = c.message;
+  }
+  json summary = {
       {"scene", scene.name},
       {"version", kVersion},
       {"status", "completed"},
-      {"effects_run", {"normal"}},
+      {"effects_run", effects_run},
       {"materials", {{"A", pair.A()}, {"E_star", pair.E_star()}, {"alpha", pair.alpha()}, {"beta", pair.beta()}}},
       {"grid",
        {{"cells", n.grid.n}, {"window", {n.grid.x_min, n.grid.x_max}}, {"window_method", n.window.method},
@@ -159,8 +218,10 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
           {"residual", n.summary.residual},
           {"seconds", n.summary.seconds},
           {"brief", n.summary.brief()}}}}},
-      {"timings", {{"total", result.timings.total}, {"normal", result.timings.normal}}},
+      {"timings", timings},
   };
+  if (result.cycle) summary["cycle"] = cycle;
+  return summary;
 }
 
 }  // namespace fretwear

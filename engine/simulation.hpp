@@ -2,6 +2,7 @@
 // cracks). Simulation::run() reads like the method; the physics lives in contact/ and wear/.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,8 +12,10 @@
 #include "contact/contact_zones.hpp"
 #include "contact/elastic_pair.hpp"
 #include "contact/grid.hpp"
+#include "contact/half_plane_kernel.hpp"
 #include "contact/normal_solver.hpp"
 #include "contact/profile.hpp"
+#include "contact/tangential_solver.hpp"
 #include "contact/window.hpp"
 #include "engine/scene.hpp"
 
@@ -44,17 +47,43 @@ struct NormalResult {
 };
 
 struct Timings {
-  double total = 0.0, normal = 0.0;  // wall seconds
+  double total = 0.0, normal = 0.0;   // wall seconds
+  std::optional<double> tangential;   // present when the stage ran
+};
+
+// What the cycle stage computed, with the route that ran.
+struct CycleStage {
+  CycleResult result;
+  std::string route;  // "analogy"
+  double Q_max = 0.0, f = 0.0, bulk_stress = 0.0;
 };
 
 struct RunResult {
   NormalResult normal;
+  std::optional<CycleStage> cycle;
   Timings timings;
 };
 
-// The normal contact of a scene on `cells` cells (the scene's own when 0). Throws ConvergenceError when the solve
-// does not converge, InputError when the contact reaches the end of a given window.
+// The bodies, the profile and the discretisation of a scene: what every stage shares.
+struct Model {
+  ElasticPair pair;
+  Profile profile;
+  Grid grid;
+  WindowChoice window;
+  std::vector<double> g0;  // initial gap per cell (m)
+  std::unique_ptr<HalfPlaneKernel> kernel;
+};
+
+// The model of a scene on `cells` cells (the scene's own when 0).
+Model make_model(const Scene& scene, int cells = 0);
+
+// The normal contact. Throws ConvergenceError when the solve does not converge, InputError when the contact
+// reaches the end of a given window.
+NormalResult solve_normal(const Scene& scene, const Model& model);
 NormalResult solve_normal(const Scene& scene, int cells = 0);
+
+// One steady load cycle. Throws UnsupportedError where the route the cycle needs is not built.
+CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal);
 
 class Simulation {
  public:

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/scene.hpp"
+#include "support.hpp"
 
 using namespace fretwear;
 using nlohmann::json;
@@ -180,13 +181,55 @@ TEST_CASE("a tilt steeper than the flanks has no lowest point") {
 
 TEST_CASE("keys of capabilities not built yet are reported as such, never ignored") {
   json j = good();
+  j["load"]["history"] = json::array();
+  j["effects"] = {{"wear", json::object()}, {"crack", json::object()}, {"tangential", {{"route", "incremental"}}}};
   j["friction"] = 0.5;
   j["load"]["Q"] = {{"ratio", 0.5}};
-  j["effects"] = {{"wear", json::object()}, {"tangential", json::object()}};
-  CHECK(reports(j, "friction", {"not supported yet"}));
-  CHECK(reports(j, "load.Q", {"not supported yet"}));
+  CHECK(reports(j, "load.history", {"not supported yet"}));
   CHECK(reports(j, "effects.wear", {"not supported yet"}));
-  CHECK(reports(j, "effects.tangential", {"not supported yet"}));
+  CHECK(reports(j, "effects.crack", {"not supported yet"}));
+  CHECK(reports(j, "effects.tangential.route", {"not supported yet"}));
+}
+
+TEST_CASE("the tangential effect: friction, and Q as exactly one of amplitude or ratio") {
+  json j = good();
+  j["effects"] = {{"tangential", json::object()}};
+  CHECK(reports(j, "friction", {"missing"}));
+  CHECK(reports(j, "load.Q", {"missing", "amplitude", "ratio"}));
+  j["friction"] = 0.0;
+  j["load"]["Q"] = {{"ratio", 0.5}, {"amplitude", 1e4}};
+  CHECK(reports(j, "friction", {"(0, 10]"}));
+  CHECK(reports(j, "load.Q", {"exactly one"}));
+  j["friction"] = 0.5;
+  j["load"]["Q"] = {{"ratio", -0.5}};
+  CHECK(reports(j, "load.Q.ratio", {">= 0"}));
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["effects"]["tangential"] = {{"route", "analogie"}, {"increments", 2}};
+  CHECK(reports(j, "effects.tangential.route", {"auto", "analogy"}));
+  CHECK(reports(j, "effects.tangential.increments", {"4 to 100000"}));
+  j["effects"]["tangential"] = {{"route", "analogy"}};
+  const Scene s = parse_scene(j);
+  CHECK(s.Q_max() == test::rel(0.5 * 0.5 * 1e5, 1e-15));
+  CHECK(parse_scene(s.to_json()).to_json() == s.to_json());
+}
+
+TEST_CASE("tangential loads without the tangential effect are errors, not ignored") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["load"]["Q"] = {{"amplitude", 1e4}};
+  j["load"]["bulk_stress"] = {{"amplitude", 1e8}};
+  CHECK(reports(j, "friction", {"no effect uses it"}));
+  CHECK(reports(j, "load.Q", {"no effect uses it"}));
+  CHECK(reports(j, "load.bulk_stress", {"no effect uses it"}));
+}
+
+TEST_CASE("dissimilar bodies need the incremental route, which is not built yet") {
+  json j = good();
+  j["materials"] = {{"pad", {{"E", 2e11}, {"nu", 0.3}}}, {"specimen", {{"E", 7e10}, {"nu", 0.33}}}};
+  j["friction"] = 0.5;
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["effects"] = {{"tangential", json::object()}};
+  CHECK(reports(j, "materials", {"incremental route", "not supported yet"}));
 }
 
 TEST_CASE("names must make a folder name") {

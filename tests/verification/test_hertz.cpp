@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support.hpp"
+
 #include "contact/closed_form.hpp"
 #include "contact/load_size.hpp"
 #include "engine/simulation.hpp"
@@ -25,11 +27,11 @@ Scene hertz_scene(double P, int cells) {
 
 TEST_CASE("PHYSICS.md's public Hertz numbers") {
   const auto hz100 = closed_form::hertz(100e3, 1.82e-11, 0.01);
-  CHECK(hz100.a == doctest::Approx(0.107641e-3).epsilon(5e-6));
-  CHECK(hz100.p0 == doctest::Approx(591.43e6).epsilon(1e-5));
+  CHECK(hz100.a == test::rel(0.107641e-3, 5e-6));
+  CHECK(hz100.p0 == test::rel(591.43e6, 1e-5));
   const auto hz1000 = closed_form::hertz(1000e3, 1.82e-11, 0.01);
-  CHECK(hz1000.a == doctest::Approx(0.340389e-3).epsilon(5e-6));
-  CHECK(hz1000.p0 == doctest::Approx(1870.27e6).epsilon(1e-5));
+  CHECK(hz1000.a == test::rel(0.340389e-3, 5e-6));
+  CHECK(hz1000.p0 == test::rel(1870.27e6, 1e-5));
 }
 
 TEST_CASE("the load–size integral gives the Hertz half-width to round-off") {
@@ -56,5 +58,5 @@ TEST_CASE("Hertz with about 700 cells in contact: half-width within 0.1 %, RMS p
   CHECK(r.reference->p_max_error < 2e-4);
   double load = 0.0;
   for (double p : r.state.p) load += p * r.grid.h();
-  CHECK(load == doctest::Approx(1e6).epsilon(1e-13));
+  CHECK(load == test::rel(1e6, 1e-13));
 }

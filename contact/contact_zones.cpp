@@ -22,7 +22,10 @@ Edge locate_edge(const Grid& grid, std::span<const double> p, std::span<const do
   const int n = grid.n;
   const int beyond = last + dir;
   const double boundary = dir > 0 ? grid.left(last + 1) : grid.left(last);
-  if (beyond < 0 || beyond >= n || !std::isfinite(g0[beyond])) return {boundary, EdgeMethod::corner};
+  // The window's end is not a corner: a zone cut by it is reported at the cell boundary, and callers treat a zone
+  // reaching an end of the grid without a corner as clipped.
+  if (beyond < 0 || beyond >= n) return {boundary, EdgeMethod::cell_boundary};
+  if (!std::isfinite(g0[beyond])) return {boundary, EdgeMethod::corner};
   const int size = std::abs(last - first) + 1;
   if (size < 4) return {boundary, EdgeMethod::cell_boundary};
   // p² is linear near a square-root edge: extrapolate it from the two cells inside the outermost one.

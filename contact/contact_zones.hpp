@@ -3,7 +3,8 @@
 // An incomplete contact's pressure falls like √(distance) at its edge, so p² is linear there: the edge is where the
 // line through p² at the last two cells before the edge cell reaches zero (EdgeMethod::square_root_fit). A complete
 // contact ends at a corner of the pad, a cell boundary where the gap becomes infinite (EdgeMethod::corner). A zone
-// too short for a fit ends at its outer cell boundary (EdgeMethod::cell_boundary).
+// too short for a fit ends at its outer cell boundary (EdgeMethod::cell_boundary), and so does a zone cut by an end of
+// the grid: the window's end is never a corner, so a caller can tell a clipped zone from a punch's edge.
 #pragma once
 
 #include <span>

@@ -7,13 +7,29 @@
 //
 // Method: constrained conjugate gradients (Polonsky and Keer 1999, Wear 231, §2 and fig. 1): CG on the current
 // contact set with the mean gap removed (this balances δ), projection onto p ≥ 0, re-entry of overlapping cells with
-// a restart, and scaling to the load. Warm-started from the caller's p when it has the grid's size.
+// a restart, and scaling to the load. Warm-started from the caller's p when it has the grid's size; a cold start is
+// uniform on the cells with g0 ≤ min g0 + A P / 2 (those that may touch, as choose_window reckons them).
+//
+// Cost: one Toeplitz product K t per iteration. The elastic displacement u = K p is carried along,
+//     u ← u − τ K t + K c,   c = the change that projection and re-entry make to p − τ t,
+// with K c summed column by column while c has few nonzeros and replaced by a full product K p otherwise; K p is
+// recomputed before convergence is declared, so the residual is never that of a drifted u.
+//
+// Preconditioner (optional): z = Π_a C⁻¹ Π_a g, with C the 2n circulant that embeds K (its spectrum is the discrete
+// form of the kernel's symbol A/|ξ|, so C⁻¹ acts like |ξ|/A, the Hilbert transform of d/dx) and Π_a the restriction to the
+// contact set with the mean removed (C is positive definite for the half-plane kernel with the window as datum; the
+// solver falls back to none if it is not). Overlapping cells then enter through a preconditioned steepest-descent
+// step on the contact set enlarged by them, not at −τ g, which overshoots on fine grids. Each iteration costs two
+// products; the default is chosen by measurement (docs/PERFORMANCE.md). Zhao, Vollebregt and Oosterlee (2014)
+// deflate such a preconditioner where it stalls; up to n = 65536 on Hertz it does not, and none is used here.
 //
 // Stopping criterion (ARCHITECTURE.md): the relative complementarity residual
 //     r = max( h Σ_i p_i |g_i| / (P g_max),  max_{p_i = 0} (−g_i) / g_max ) ≤ tolerance,
-// with g_max the largest finite gap on the grid; the load is balanced to round-off at every iterate.
+// with g_max the largest finite gap on the grid, or A P if larger (a complete contact has no open gap); the load is
+// balanced to round-off at every iterate.
 #pragma once
 
+#include <complex>
 #include <span>
 #include <string>
 #include <vector>
@@ -23,12 +39,23 @@
 namespace fretwear {
 
 struct NormalSolverOptions {
+  enum class Preconditioner { none, symbol };
+
   double tolerance = 1e-8;     // on the residual r above; in (0, 1e-2]
   int max_iterations = 20000;  // CG iterations before giving up; ≥ 1
+  // none: plain constrained CG; symbol: Π_a C⁻¹ Π_a on the contact set (see above). symbol is 5–7× faster on
+  // Hertz from n = 1024 to 65536 (docs/PERFORMANCE.md).
+  Preconditioner preconditioner = Preconditioner::symbol;
+  // Carry u = K p from one iteration to the next (one product per iteration) instead of recomputing it (two).
+  bool incremental_gap = true;
+  // Cold start on the cells with g0 ≤ min g0 + A P / 2 instead of on every admissible cell.
+  bool cold_start_near = true;
 
   // Empty when valid; otherwise names the field, its value and the constraint.
   std::string validate() const;
 };
+
+std::string to_string(NormalSolverOptions::Preconditioner p);
 
 enum class Termination { converged, max_iterations, non_finite, no_admissible_cell };
 std::string to_string(Termination t);
@@ -63,6 +90,7 @@ class NormalSolver {
  private:
   const HalfPlaneKernel& kernel_;
   NormalSolverOptions options_;
+  std::vector<std::complex<double>> inverse_spectrum_;  // C⁻¹ on the kernel's circulant, when preconditioned
 };
 
 }  // namespace fretwear

@@ -178,20 +178,26 @@ std::pair<double, double> raw_support(const ProfileSpec& s) {
   }
 }
 
-bool is_symmetric_convex(const ProfileSpec& s) {
-  if (s.tilt_rad != 0.0) return false;
+// The centre (in the frame of s's parent) about which s is even and convex, if it is: untilted cylinders, rounded
+// punches, wedges and rounded wedges, and sums of them sharing one centre (nested offsets included).
+std::optional<double> symmetry_centre(const ProfileSpec& s) {
+  if (s.tilt_rad != 0.0) return std::nullopt;
   switch (s.type) {
     case ProfileType::cylinder:
     case ProfileType::flat_rounded:
     case ProfileType::wedge:
     case ProfileType::rounded_wedge:
-      return true;
-    case ProfileType::sum:
-      return !s.terms.empty() && std::all_of(s.terms.begin(), s.terms.end(), [&](const ProfileSpec& t) {
-        return t.offset_x == s.terms.front().offset_x && is_symmetric_convex(t);
-      });
+      return s.offset_x;
+    case ProfileType::sum: {
+      if (s.terms.empty()) return std::nullopt;
+      const auto first = symmetry_centre(s.terms.front());
+      if (!first) return std::nullopt;
+      for (const auto& t : s.terms)
+        if (symmetry_centre(t) != first) return std::nullopt;
+      return s.offset_x + *first;
+    }
     default:
-      return false;
+      return std::nullopt;
   }
 }
 
@@ -231,9 +237,16 @@ ProfileType profile_type_from_string(std::string_view word) {
   throw InputError("profile type '" + std::string(word) + "' is unknown; use one of " + profile_type_words());
 }
 
+namespace {
+[[noreturn]] void throw_unbounded() {
+  throw InputError("profile: the gap has no lowest point within 1 km of the profile's centre: a tilt_rad steeper "
+                   "than the profile's flanks makes the bodies interpenetrate without bound");
+}
+}  // namespace
+
 Profile::Profile(ProfileSpec spec) : spec_(std::move(spec)) {
   support_ = raw_support(spec_);
-  symmetric_ = is_symmetric_convex(spec_);
+  symmetric_ = symmetry_centre(spec_).has_value();
   periodic_ = is_periodic(spec_) && spec_.tilt_rad == 0.0;
   if (support_.first >= support_.second)
     throw InputError("profile: the terms of the sum have no common support (their tables or flats do not overlap)");
@@ -264,15 +277,31 @@ Profile::Profile(ProfileSpec spec) : spec_(std::move(spec)) {
     if (i_hi > i_lo) {
       x_low_ = lo + 0.5 * (i_lo + i_hi) * dx;
     } else {
+      // Brent in the bracket's own unit: its absolute tolerance (a quarter of √ε) would otherwise be in metres, far
+      // coarser than a micrometre-sized contact.
       const double a = lo + std::max(i_min - 1, 0) * dx, b = lo + std::min(i_min + 1, kSamples - 1) * dx;
-      auto r = boost::math::tools::brent_find_minima([&](double x) { return raw_gap(spec_, x); }, a, b, 52);
-      x_low_ = r.second < g_min ? r.first : lo + i_min * dx;
+      const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+      auto r = boost::math::tools::brent_find_minima([&](double u) { return raw_gap(spec_, mid + u * half); }, -1.0,
+                                                     1.0, std::numeric_limits<double>::digits);
+      x_low_ = lo + i_min * dx;
+      double g_best = g_min;
+      if (r.second < g_best) x_low_ = mid + r.first * half, g_best = r.second;
+      // A minimum at a kink (a wedge's apex, a table's node) is exact there, which Brent only approaches.
+      for (double k : kinks()) {
+        if (k < a || k > b) continue;
+        const double gk = raw_gap(spec_, k);
+        if (gk <= g_best) x_low_ = k, g_best = gk;
+      }
     }
     g_low_ = std::min(g_min, raw_gap(spec_, x_low_));
+    // An interior minimum is not a lowest point when the gap falls below it far away (a tilted waviness).
+    for (double far : {x_low_ - 1e3, x_low_ + 1e3}) {
+      if (far < support_.first || far > support_.second) continue;
+      if (raw_gap(spec_, far) < g_low_) throw_unbounded();
+    }
     return;
   }
-  throw InputError("profile: the gap has no lowest point within 1 km of the profile's centre: a tilt_rad steeper "
-                   "than the profile's flanks makes the bodies interpenetrate without bound");
+  throw_unbounded();
 }
 
 double Profile::gap(double x) const {

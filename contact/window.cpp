@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "contact/contact_zones.hpp"
 #include "contact/error.hpp"
@@ -31,6 +32,35 @@ double crossing(const Profile& profile, double x0, double dir, double level) {
     (profile.gap(mid) <= level ? inside : outside) = mid;
   }
   return std::clamp(inside, s0, s1);
+}
+
+// The lowest point of every asperity of an envelope (recursively), in global x with the tilts of the enclosing nodes
+// added: places that may touch however far they lie from the profile's lowest point.
+void asperity_minima(const ProfileSpec& s, double shift, double tilt, std::vector<double>& out) {
+  if (s.type != ProfileType::envelope) return;
+  for (const ProfileSpec& term : s.terms) {
+    ProfileSpec alone = term;
+    alone.offset_x = shift + s.offset_x + term.offset_x;
+    alone.tilt_rad = term.tilt_rad + tilt + s.tilt_rad;
+    if (term.type == ProfileType::envelope) {
+      asperity_minima(term, shift + s.offset_x, tilt + s.tilt_rad, out);
+      continue;
+    }
+    try {
+      out.push_back(Profile(alone).lowest_point());
+    } catch (const InputError&) {
+      // A term without a lowest point of its own (a lone waviness) adds no separate place.
+    }
+  }
+}
+
+// The gap at x (outside the trial grid) left by the trial solution: g0 + K p − δ.
+double gap_after(const Profile& profile, const HalfPlaneKernel& kernel, const ContactState& state, double x) {
+  const Grid& g = kernel.grid();
+  double u = 0.0;
+  for (int j = 0; j < g.n; ++j)
+    if (state.p[j] > 0.0) u += kernel.coefficient(x - g.x(j)) * state.p[j];
+  return profile.gap(x) + u - state.approach;
 }
 
 }  // namespace
@@ -66,8 +96,14 @@ WindowChoice choose_window(const Profile& profile, double A, double P, int cells
     const double x = r0 + (r1 - r0) * i / (kScan - 1);
     if (profile.gap(x) <= level) lo = std::min(lo, x), hi = std::max(hi, x);
   }
+  // Separate asperities may lie beyond the scan: their lowest points are known from the profile's tree.
+  std::vector<double> asperities;
+  asperity_minima(profile.spec(), 0.0, 0.0, asperities);
+  for (double x : asperities)
+    if (profile.gap(x) <= level) lo = std::min(lo, x), hi = std::max(hi, x);
 
-  // Trial solves: widen until the contact stays off the trial window's ends.
+  // Trial solves: widen until the contact stays off the trial window's ends and no asperity outside the trial window
+  // would be pressed through by the trial's approach.
   double c = 0.5 * (lo + hi), half = std::max(0.5 * (hi - lo), 1e-9);
   for (int attempt = 0; attempt < 40; ++attempt, half *= 2.0) {
     const Grid trial = align_to_support(profile, c - 1.5 * half, c + 1.5 * half, kTrialCells);
@@ -82,6 +118,16 @@ WindowChoice choose_window(const Profile& profile, double A, double P, int cells
     const bool touches = (zones.front().first_cell == 0 && zones.front().left.method != EdgeMethod::corner) ||
                          (zones.back().last_cell == trial.n - 1 && zones.back().right.method != EdgeMethod::corner);
     if (touches) continue;
+    bool missed = false;
+    for (double x : asperities) {
+      if (x >= trial.x_min && x <= trial.x_max) continue;
+      if (gap_after(profile, kernel, state, x) < 0.0) lo = std::min(lo, x), hi = std::max(hi, x), missed = true;
+    }
+    if (missed) {  // take the asperity in and redo at the same relative margin
+      c = 0.5 * (lo + hi);
+      half = 0.5 * std::max(0.5 * (hi - lo), 1e-9);
+      continue;
+    }
     const double xl = zones.front().left.x, xr = zones.back().right.x;
     const double bl = 0.5 * (zones.front().right.x - xl), br = 0.5 * (xr - zones.back().left.x);
     // Resolve the zones with at least a few trial cells; else shrink the trial window around them and redo.

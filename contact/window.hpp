@@ -5,7 +5,9 @@
 //   x_low ± 1.5 b.
 // - Anything else: every x with g0(x) ≤ A P / 2 (in 2D the approach scales like A P: for a wedge this is the exact
 //   half-width, for Hertz 1.25 a) may touch; a coarse trial solve over that set, widened until the contact stays off
-//   the trial window's ends, gives the zones, and the window is their extent plus the margin.
+//   the trial window's ends, gives the zones, and the window is their extent plus the margin. The separate asperities
+//   of an envelope are found however far apart they are: each one's lowest point is a candidate, taken in when its
+//   gap is within A P / 2 or when the trial solution would press it through.
 #pragma once
 
 #include <string>

@@ -94,23 +94,25 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
   r.g0 = model.g0;
   const NormalSolver solver(*model.kernel);
   r.summary = solver.solve(r.g0, scene.P, r.state);
+  r.zones = locate_zones(g, r.state.p, r.g0);
+  // A contact clipped by a given window is the scene's problem, whether or not the solve converged.
+  if (!r.zones.empty()) {
+    const bool at_left = r.zones.front().first_cell == 0 && r.zones.front().left.method != EdgeMethod::corner;
+    const bool at_right = r.zones.back().last_cell == g.n - 1 && r.zones.back().right.method != EdgeMethod::corner;
+    if (at_left || at_right)
+      throw InputError(fmt::format("grid.window: the contact reaches the window's {} end (x = {:.6g} m) and would "
+                                   "be clipped; widen grid.window or leave it out to have it chosen",
+                                   at_left ? "left" : "right", at_left ? g.x_min : g.x_max));
+  }
   if (!r.summary.converged())
     throw ConvergenceError(fmt::format("normal contact: the solve stopped ({}) with residual {:.3g} above the "
                                        "tolerance {:.3g} on {} cells",
                                        to_string(r.summary.termination), r.summary.residual,
                                        solver.options().tolerance, g.n));
-
-  r.zones = locate_zones(g, r.state.p, r.g0);
   for (int i = 0; i < g.n; ++i) {
     if (r.state.p[i] > r.p_max) r.p_max = r.state.p[i], r.x_p_max = g.x(i);
     r.cells_in_contact += r.state.p[i] > 0.0;
   }
-  const bool at_left = r.zones.front().first_cell == 0 && r.zones.front().left.method != EdgeMethod::corner;
-  const bool at_right = r.zones.back().last_cell == g.n - 1 && r.zones.back().right.method != EdgeMethod::corner;
-  if (at_left || at_right)
-    throw InputError(fmt::format("grid.window: the contact reaches the window's {} end (x = {:.6g} m) and would be "
-                                 "clipped; widen grid.window or leave it out to have it chosen",
-                                 at_left ? "left" : "right", at_left ? g.x_min : g.x_max));
   r.reference = closed_form_reference(scene, pair, r);
   return r;
 }

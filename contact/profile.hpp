@@ -38,7 +38,8 @@ struct ProfileSpec {
 
 class Profile {
  public:
-  // Throws InputError if the profile has no lowest point (a tilt steeper than the flanks, a lone waviness).
+  // Throws InputError if the profile has no lowest point (a tilt steeper than the flanks, a tilted waviness). A
+  // lone waviness has one but repeats it: periodic() is then true and the scene must give the window.
   explicit Profile(ProfileSpec spec);
 
   double gap(double x) const;    // g0(x) ≥ 0 (m); +∞ where the pad has no material

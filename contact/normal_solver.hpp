@@ -84,6 +84,11 @@ class NormalSolver {
   // Solves for load P (N/m) and initial gap g0 (one value per cell). state.p is used as the starting guess when it
   // has one value per cell and carries load; it is overwritten with the solution.
   SolveSummary solve(std::span<const double> g0, double P, ContactState& state) const;
+  // The same with the operator K + diag(shift), shift ≥ 0 per cell (m/Pa): the contact-implicit wear step of
+  // ARCHITECTURE.md, where shift = ΔN · (wear coefficient) · (slip per cycle) and the returned gap includes the
+  // step's wear. K + diag(shift) is symmetric positive definite on the load-balanced subspace, like K; the
+  // solve is unpreconditioned (the symbol fits K alone) and recomputes the displacement every iteration.
+  SolveSummary solve(std::span<const double> g0, double P, ContactState& state, std::span<const double> shift) const;
 
   const NormalSolverOptions& options() const { return options_; }
 

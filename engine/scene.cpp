@@ -444,7 +444,68 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       rt.finish();
       s.tangential = effect;
     }
-    r.finish({{"wear", "the wear issue adds it"},
+    if (const json* w = r.object("wear", false)) {
+      Reader rw(*w, "effects.wear", problems);
+      WearEffect effect;
+      effect.law = rw.string("law", "archard", "\"archard\" or \"energy\"").value_or("archard");
+      if (effect.law != "archard" && effect.law != "energy") {
+        rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
+      } else {
+        const char* key = effect.law == "archard" ? "k" : "alpha";
+        const char* other = effect.law == "archard" ? "alpha" : "k";
+        effect.coefficient = rw.number(key, std::nullopt, {[](double v) { return v > 0.0 && v < 1.0; },
+                                                           "a wear coefficient in (0, 1) 1/Pa"})
+                                 .value_or(1e-15);
+        if (w->contains(other)) {
+          rw.find(other);
+          rw.problem(fmt::format("effects.wear.{}", other),
+                     fmt::format("belongs to the other law; the {} law takes \"{}\"", effect.law, key));
+        }
+      }
+      effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
+                                                            "a share in [0, 1]"})
+                                .value_or(0.5);
+      effect.cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
+                                                         "a whole number of cycles from 1 to 1e12"})
+                          .value_or(1.0);
+      effect.stepper = rw.string("stepper", "implicit", "\"implicit\", \"explicit\" or \"cycle_by_cycle\"").value_or("implicit");
+      if (effect.stepper == "explicit" || effect.stepper == "cycle_by_cycle")
+        rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not supported yet; use \"implicit\"", effect.stepper));
+      else if (effect.stepper != "implicit")
+        rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not a stepper; use \"implicit\", \"explicit\" or "
+                                                       "\"cycle_by_cycle\"", effect.stepper));
+      effect.tolerance = rw.number("tolerance", 1e-3, {[](double v) { return v > 0.0 && v <= 0.1; },
+                                                       "a relative tolerance in (0, 0.1]"})
+                             .value_or(1e-3);
+      if (const json* rec = rw.find("record")) {
+        if (rec->is_number_integer() && rec->get<long long>() >= 1 && rec->get<long long>() <= 1000) {
+          effect.record_count = int(rec->get<long long>());
+        } else if (rec->is_array() && !rec->empty()) {
+          double last = 0.0;
+          for (std::size_t i = 0; i < rec->size(); ++i) {
+            const json& at = (*rec)[i];
+            if (!at.is_number() || !(at.get<double>() > last) || at.get<double>() > effect.cycles) {
+              rw.problem(fmt::format("effects.wear.record[{}]", i),
+                         fmt::format("{} is not allowed; give increasing cycle counts in (0, cycles]", describe(at)));
+              break;
+            }
+            last = at.get<double>();
+            effect.record.push_back(last);
+          }
+          effect.record_count = 0;
+        } else {
+          rw.problem("effects.wear.record", fmt::format("{} is neither a count from 1 to 1000 nor a list of cycles",
+                                                        describe(*rec)));
+        }
+      }
+      rw.finish();
+      s.wear = effect;
+      if (!s.tangential) {
+        s.tangential = TangentialEffect{};
+        s.tangential_implied = true;
+      }
+    }
+    r.finish({
               {"stress", "the subsurface-stress issue adds it"},
               {"crack", "the crack issue adds it"}});
   }
@@ -464,9 +525,11 @@ Scene parse_scene(const json& j, const std::string& default_name) {
 
   // What the effects need.
   if (s.tangential) {
-    if (!s.friction) problems.push_back("friction: missing; effects.tangential needs a friction coefficient in (0, 10]");
+    const char* who = s.tangential_implied ? "effects.wear (through the load cycle it needs)" : "effects.tangential";
+    if (!s.friction)
+      problems.push_back(fmt::format("friction: missing; {} needs a friction coefficient in (0, 10]", who));
     if (!s.Q_amplitude && !s.Q_ratio)
-      problems.push_back("load.Q: missing; effects.tangential needs {\"amplitude\": Q (N/m)} or {\"ratio\": Q/(fP)}");
+      problems.push_back(fmt::format("load.Q: missing; {} needs {{\"amplitude\": Q (N/m)}} or {{\"ratio\": Q/(fP)}}", who));
     const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
     if (std::abs(pair.beta()) > 1e-12)
       problems.push_back(fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the normal and "
@@ -546,6 +609,19 @@ json Scene::to_json() const {
   j["effects"] = json::object();
   if (tangential)
     j["effects"]["tangential"] = {{"route", to_string(tangential->route)}, {"increments", tangential->increments}};
+  if (wear) {
+    json w = {{"law", wear->law},
+              {wear->law == "archard" ? "k" : "alpha", wear->coefficient},
+              {"pad_fraction", wear->pad_fraction},
+              {"cycles", wear->cycles},
+              {"stepper", wear->stepper},
+              {"tolerance", wear->tolerance}};
+    if (wear->record_count > 0)
+      w["record"] = wear->record_count;
+    else
+      w["record"] = wear->record;
+    j["effects"]["wear"] = w;
+  }
   j["output"] = {{"dir", output_dir.generic_string()}, {"plots", plots}};
   return j;
 }

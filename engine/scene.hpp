@@ -35,6 +35,18 @@ struct TangentialEffect {
   int increments = 40;  // per cycle, for the incremental route
 };
 
+// effects.wear: the slip zones worn cycle after cycle.
+struct WearEffect {
+  std::string law = "archard";      // "archard" (k) or "energy" (alpha)
+  double coefficient = 0.0;         // k or alpha (1/Pa)
+  double pad_fraction = 0.5;        // share of the wear on the pad
+  double cycles = 0.0;              // a whole number of cycles
+  std::string stepper = "implicit"; // "implicit" ("explicit", "cycle_by_cycle" not built yet)
+  double tolerance = 1e-3;          // relative, on the worn profile, per step
+  std::vector<double> record;       // cycles at which the state is recorded (increasing, last = cycles)
+  int record_count = 16;            // when record was given as a count (log-spaced)
+};
+
 struct Scene {
   std::string name;                      // letters, digits, '_', '-', '.'; names the output folder
   PlaneState plane = PlaneState::strain;
@@ -47,6 +59,8 @@ struct Scene {
   std::optional<double> Q_ratio;         // load.Q.ratio = Q/(fP)
   double bulk_stress = 0.0;              // load.bulk_stress.amplitude: σ in the specimen in phase with Q (Pa)
   std::optional<TangentialEffect> tangential;
+  bool tangential_implied = false;       // added because wear needs the cycle
+  std::optional<WearEffect> wear;
 
   // Q at the top of the cycle (N/m), from the amplitude or the ratio; 0 without a tangential load.
   double Q_max() const;

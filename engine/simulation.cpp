@@ -10,6 +10,7 @@
 #include "contact/half_plane_kernel.hpp"
 #include "contact/load_size.hpp"
 #include "engine/version.hpp"
+#include "engine/wear_stage.hpp"
 
 namespace fretwear {
 namespace {
@@ -64,21 +65,53 @@ std::optional<Reference> closed_form_reference(const Scene& scene, const Elastic
 
 }  // namespace
 
-Model make_model(const Scene& scene, int cells) {
-  if (cells <= 0) cells = scene.cells;
-  Model m{ElasticPair(scene.pad, scene.specimen, scene.plane), Profile(scene.profile), Grid{}, WindowChoice{}, {},
-          nullptr};
-  if (scene.window) {
-    m.window = {scene.window->first, scene.window->second, "given", 0.0};
-    m.grid = Grid{scene.window->first, scene.window->second, cells};
-  } else {
-    m.window = choose_window(m.profile, m.pair.A(), scene.P, cells);
-    m.grid = align_to_support(m.profile, m.window.x_min, m.window.x_max, cells);
-  }
+namespace {
+
+Model model_on(const Scene& scene, const Grid& grid, const WindowChoice& window) {
+  Model m{ElasticPair(scene.pad, scene.specimen, scene.plane), Profile(scene.profile), grid, window, {}, nullptr};
   m.g0.resize(m.grid.n);
   for (int i = 0; i < m.grid.n; ++i) m.g0[i] = m.profile.gap(m.grid.x(i));
   m.kernel = std::make_unique<HalfPlaneKernel>(m.grid, m.pair.A());
   return m;
+}
+
+// A wearing contact grows past its original edges up to the asymptote's worn extent (PHYSICS.md, "Wear": x_e > a),
+// which the default window must cover with the same margin: compute the asymptote on a coarse, wide grid.
+WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
+  constexpr int kTrialCells = 1024;
+  const double centre = 0.5 * (w.x_min + w.x_max);
+  double half = 0.5 * (w.x_max - w.x_min);
+  for (int attempt = 0; attempt < 6; ++attempt, half *= 2.0) {
+    const double lo = centre - 2.5 * half, hi = centre + 2.5 * half;
+    const Model trial = model_on(scene, align_to_support(profile, lo, hi, kTrialCells), {lo, hi, "trial", 0.0});
+    const NormalResult normal = solve_normal(scene, trial);
+    const WearAsymptote a = wear_asymptote(scene, trial, normal);
+    if (a.worn_area <= 0.0) return w;
+    if (a.extent.first <= trial.grid.x_min + trial.grid.h() || a.extent.second >= trial.grid.x_max - trial.grid.h())
+      continue;
+    const double l = std::min(a.extent.first, normal.zones.front().left.x);
+    const double r = std::max(a.extent.second, normal.zones.back().right.x);
+    const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
+    return {std::min(w.x_min, c - 1.5 * hw), std::max(w.x_max, c + 1.5 * hw), w.method + "+wear_asymptote",
+            w.expected_half_width};
+  }
+  throw InputError("grid: the asymptotic worn zone keeps reaching the end of a trial window 64 times the contact; "
+                   "give grid.window");
+}
+
+}  // namespace
+
+Model make_model(const Scene& scene, int cells) {
+  if (cells <= 0) cells = scene.cells;
+  const Profile profile(scene.profile);
+  const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
+  if (scene.window) {
+    return model_on(scene, Grid{scene.window->first, scene.window->second, cells},
+                    {scene.window->first, scene.window->second, "given", 0.0});
+  }
+  WindowChoice w = choose_window(profile, pair.A(), scene.P, cells);
+  if (scene.wear) w = widen_for_wear(scene, profile, w);
+  return model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w);
 }
 
 NormalResult solve_normal(const Scene& scene, int cells) { return solve_normal(scene, make_model(scene, cells)); }
@@ -144,6 +177,11 @@ RunResult Simulation::run() const {
     const auto t1 = std::chrono::steady_clock::now();
     result.cycle = solve_cycle(scene_, model, result.normal);
     result.timings.tangential = seconds_since(t1);
+  }
+  if (scene_.wear) {
+    const auto t2 = std::chrono::steady_clock::now();
+    result.wear = std::make_shared<WearStage>(run_wear(scene_, model, result.normal));
+    result.timings.wear = seconds_since(t2);
   }
   result.timings.total = seconds_since(t0);
   return result;
@@ -223,6 +261,40 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
       {"timings", timings},
   };
   if (result.cycle) summary["cycle"] = cycle;
+  if (scene.tangential_implied) summary["effects_implied"] = {{"tangential", "needed by wear"}};
+  if (result.wear) {
+    const WearStage& w = *result.wear;
+    const WearEffect& e = *scene.wear;
+    summary["effects_run"].push_back("wear");
+    summary["timings"]["wear"] = *result.timings.wear;
+    auto interval = [](const std::optional<Interval>& i) { return i ? json{i->first, i->second} : json(nullptr); };
+    const WearRecord& last = w.records.back();
+    summary["wear"] = {
+        {"law", e.law},
+        {"coefficient", e.coefficient},
+        {"rate_coefficient", w.rate_coefficient},
+        {"pad_fraction", e.pad_fraction},
+        {"stepper", e.stepper},
+        {"tolerance", e.tolerance},
+        {"cycles", last.cycles},
+        {"worn_area", last.worn_area},
+        {"max_depth", last.max_depth},
+        {"fraction_of_asymptote", last.fraction},
+        {"stick_zone_initial", interval(w.records.front().stick_zone)},
+        {"stick_zone_final", interval(last.stick_zone)},
+        {"contact_final", {last.contact.first, last.contact.second}},
+        {"steps", w.steps},
+        {"rejected_steps", w.rejected_steps},
+        {"implicit_solves", w.implicit_solves},
+        {"cycle_solves", w.responses},
+        {"explicit_stability_limit", w.stability_limit},
+        {"records", w.records.size()},
+        {"asymptote",
+         {{"worn_area", w.asymptote.worn_area},
+          {"max_depth", w.asymptote.max_depth},
+          {"x_max_depth", w.asymptote.x_max_depth},
+          {"extent", {w.asymptote.extent.first, w.asymptote.extent.second}}}}};
+  }
   return summary;
 }
 

@@ -49,7 +49,10 @@ struct NormalResult {
 struct Timings {
   double total = 0.0, normal = 0.0;   // wall seconds
   std::optional<double> tangential;   // present when the stage ran
+  std::optional<double> wear;
 };
+
+struct WearStage;
 
 // What the cycle stage computed, with the route that ran.
 struct CycleStage {
@@ -61,6 +64,7 @@ struct CycleStage {
 struct RunResult {
   NormalResult normal;
   std::optional<CycleStage> cycle;
+  std::shared_ptr<const WearStage> wear;  // engine/wear_stage.hpp
   Timings timings;
 };
 

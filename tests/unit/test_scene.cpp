@@ -182,11 +182,11 @@ TEST_CASE("a tilt steeper than the flanks has no lowest point") {
 TEST_CASE("keys of capabilities not built yet are reported as such, never ignored") {
   json j = good();
   j["load"]["history"] = json::array();
-  j["effects"] = {{"wear", json::object()}, {"crack", json::object()}, {"tangential", {{"route", "incremental"}}}};
+  j["effects"] = {{"stress", json::object()}, {"crack", json::object()}, {"tangential", {{"route", "incremental"}}}};
   j["friction"] = 0.5;
   j["load"]["Q"] = {{"ratio", 0.5}};
   CHECK(reports(j, "load.history", {"not supported yet"}));
-  CHECK(reports(j, "effects.wear", {"not supported yet"}));
+  CHECK(reports(j, "effects.stress", {"not supported yet"}));
   CHECK(reports(j, "effects.crack", {"not supported yet"}));
   CHECK(reports(j, "effects.tangential.route", {"not supported yet"}));
 }
@@ -211,6 +211,31 @@ TEST_CASE("the tangential effect: friction, and Q as exactly one of amplitude or
   const Scene s = parse_scene(j);
   CHECK(s.Q_max() == test::rel(0.5 * 0.5 * 1e5, 1e-15));
   CHECK(parse_scene(s.to_json()).to_json() == s.to_json());
+}
+
+TEST_CASE("the wear effect: law and its coefficient, cycles, stepper, tolerance, records; it implies the cycle") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["effects"] = {{"wear", {{"law", "archard"}, {"k", 1e-15}, {"cycles", 1e6}}}};
+  Scene s = parse_scene(j);
+  REQUIRE(s.wear);
+  CHECK(s.tangential);
+  CHECK(s.tangential_implied);
+  CHECK(s.wear->record_count == 16);
+  CHECK(parse_scene(s.to_json()).to_json() == s.to_json());
+  j["effects"]["wear"] = {{"law", "energy"}, {"k", 1e-15}, {"cycles", 1.5}, {"stepper", "explicit"},
+                          {"tolerance", 0.5}, {"record", {10, 5}}, {"pad_fraction", 2}};
+  CHECK(reports(j, "effects.wear.alpha", {"missing"}));
+  CHECK(reports(j, "effects.wear.k", {"other law"}));
+  CHECK(reports(j, "effects.wear.cycles", {"whole number"}));
+  CHECK(reports(j, "effects.wear.stepper", {"not supported yet"}));
+  CHECK(reports(j, "effects.wear.tolerance", {"(0, 0.1]"}));
+  CHECK(reports(j, "effects.wear.pad_fraction", {"[0, 1]"}));
+  j["effects"]["wear"] = {{"law", "archard"}, {"k", 1e-15}, {"cycles", 100}, {"record", {10, 5}}};
+  CHECK(reports(j, "effects.wear.record[1]", {"increasing"}));
+  j.erase("friction");
+  CHECK(reports(j, "friction", {"effects.wear"}));
 }
 
 TEST_CASE("tangential loads without the tangential effect are errors, not ignored") {

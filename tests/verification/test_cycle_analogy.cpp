@@ -179,7 +179,10 @@ TEST_CASE("gross slip is reported, with no stick zone and nothing divided by zer
   const Run r = run(s);
   CHECK(r.cycle.result.regime == Regime::gross_slip);
   CHECK_FALSE(r.cycle.result.stick_zone);
-  const auto summary = make_summary(s, {r.normal, r.cycle, {}});
+  RunResult result;
+  result.normal = r.normal;
+  result.cycle = r.cycle;
+  const auto summary = make_summary(s, result);
   CHECK(summary["cycle"]["stick_zone"].is_null());
   CHECK(summary["cycle"]["regime"] == "gross_slip");
 }

@@ -1,0 +1,30 @@
+// What wear needs from the contact, and all it knows of it: the steady cycle on a worn profile, and the pressure of
+// the contact-implicit step. The engine implements it on top of contact/; wear/ never includes contact/.
+#pragma once
+
+#include <span>
+#include <vector>
+
+namespace fretwear::wear {
+
+// The contact in one wear state w (the wear depth per cell, both bodies together, m).
+struct CycleResponse {
+  std::vector<double> p;  // pressure per cell under P (Pa)
+  std::vector<double> s;  // slip travelled per cycle per cell (m); 0 in the stick zone and off the contact
+  double stick_left = 0.0, stick_right = 0.0;  // the stick zone (m); equal when there is none
+  bool has_stick = false;
+};
+
+class ContactResponse {
+ public:
+  virtual ~ContactResponse() = default;
+  virtual int cells() const = 0;
+  virtual double cell_width() const = 0;  // m
+  // The steady cycle on the profile worn by w.
+  virtual void respond(std::span<const double> w, CycleResponse& out) = 0;
+  // The pressure p that satisfies the contact conditions with gap g0 + w + d p − δ (operator K + diag(d)), i.e. the
+  // end-of-step pressure of a contact-implicit step with d = ΔN c s. p holds a warm start on entry.
+  virtual void implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) = 0;
+};
+
+}  // namespace fretwear::wear

@@ -1,0 +1,58 @@
+#include "wear/implicit_stepper.hpp"
+
+namespace fretwear::wear {
+
+using boost::numeric::odeint::controlled_step_result;
+
+void ImplicitWearStepper::euler(ContactResponse& contact, const state_type& w, const std::vector<double>& s,
+                                double dN, std::vector<double>& p, state_type& out) {
+  const std::size_t n = w.size();
+  d_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) d_[i] = dN * c_ * s[i];
+  contact.implicit_pressure(w, d_, p);
+  ++stats_.implicit_solves;
+  out.resize(n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = w[i] + d_[i] * p[i];
+}
+
+controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& contact, state_type& w, time_type& N,
+                                                          time_type& dN) {
+  if (!response_valid_ || state_at_ != w) {
+    contact.respond(w, response_);
+    ++stats_.responses;
+    state_at_ = w;
+    response_valid_ = true;
+  }
+  if (p_full_.size() != w.size()) p_full_ = response_.p;
+  if (p_half_.size() != w.size()) p_half_ = response_.p;
+
+  euler(contact, w, response_.s, dN, p_full_, w_full_);
+  euler(contact, w, response_.s, 0.5 * dN, p_half_, w_half_);
+  contact.respond(w_half_, half_);
+  ++stats_.responses;
+  std::vector<double> p_two = p_half_;
+  euler(contact, w_half_, half_.s, 0.5 * dN, p_two, w_two_);
+
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    diff = std::max(diff, std::abs(w_two_[i] - w_full_[i]));
+    scale = std::max(scale, std::abs(w_two_[i]));
+  }
+  const double err = scale > 0.0 ? diff / (tolerance_ * scale) : 0.0;
+  stats_.last_error = err;
+  if (!(err <= 1.0)) {
+    ++stats_.rejected;
+    dN *= std::clamp(0.9 / std::sqrt(err), 0.2, 0.9);
+    return controlled_step_result::fail;
+  }
+  for (std::size_t i = 0; i < w.size(); ++i) w[i] = std::max(w[i], 2.0 * w_two_[i] - w_full_[i]);
+  N += dN;
+  dN *= err > 0.0 ? std::clamp(0.9 / std::sqrt(err), 1.0, 4.0) : 4.0;
+  ++stats_.accepted;
+  p_full_ = p_two;
+  p_half_ = p_two;
+  response_valid_ = false;
+  return controlled_step_result::success;
+}
+
+}  // namespace fretwear::wear

@@ -93,6 +93,9 @@ class NormalSolver {
   const NormalSolverOptions& options() const { return options_; }
 
  private:
+  // One constrained-CG run; with the preconditioner it also stops when it stalls (solve() then falls back).
+  SolveSummary iterate(std::span<const double> g0, double P, ContactState& state, std::span<const double> shift,
+                       bool use_preconditioner) const;
   const HalfPlaneKernel& kernel_;
   NormalSolverOptions options_;
   std::vector<std::complex<double>> inverse_spectrum_;  // C⁻¹ on the kernel's circulant, when preconditioned

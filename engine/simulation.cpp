@@ -287,6 +287,8 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
         {"rejected_steps", w.rejected_steps},
         {"implicit_solves", w.implicit_solves},
         {"cycle_solves", w.responses},
+        {"mean_iterations_cycle", w.mean_iterations_cycle},
+        {"mean_iterations_implicit", w.mean_iterations_implicit},
         {"explicit_stability_limit", w.stability_limit},
         {"records", w.records.size()},
         {"asymptote",

@@ -9,6 +9,7 @@
 
 #include "contact/contact_zones.hpp"
 #include "contact/error.hpp"
+#include "contact/half_plane_kernel.hpp"
 #include "engine/simulation.hpp"
 #include "wear/wear_law.hpp"
 
@@ -35,7 +36,9 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   const int n = grid.n;
   gap_.resize(n);
   for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
-  auto check = [](const SolveSummary& s, const char* what) {
+  auto check = [this](const SolveSummary& s, const char* what) {
+    ++cycle_solves;
+    cycle_iterations += s.iterations;
     if (!s.converged())
       throw ConvergenceError(fmt::format("wear: the {} solve on the worn profile stopped ({}) with residual {:.3g}",
                                          what, to_string(s.termination), s.residual));
@@ -65,6 +68,8 @@ void AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::s
   for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
   implicit_.p = p;
   const SolveSummary s = solver_.solve(gap_, scene_.P, implicit_, d);
+  ++implicit_solves;
+  implicit_iterations += s.iterations;
   if (!s.converged())
     throw ConvergenceError(fmt::format("wear: the contact-implicit solve stopped ({}) with residual {:.3g}",
                                        to_string(s.termination), s.residual));
@@ -72,37 +77,57 @@ void AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::s
 }
 
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal) {
-  // The stick zone of the first cycle: the cells the corrective contact loads.
+  // The stick zone of the first cycle, located to sub-cell accuracy.
   AnalogyContactResponse contact(scene, model);
   wear::CycleResponse first;
-  const std::vector<double> unworn(model.grid.n, 0.0);
-  contact.respond(unworn, first);
-  const std::vector<double>& stick_p = contact.corrective_pressure();
+  contact.respond(std::vector<double>(model.grid.n, 0.0), first);
+  (void)normal;
+  WearAsymptote a;
   const Grid& grid = model.grid;
   const int n = grid.n;
-  std::vector<double> g(n);
-  for (int i = 0; i < n; ++i) g[i] = stick_p[i] > 0.0 ? model.g0[i] : std::numeric_limits<double>::infinity();
-  WearAsymptote a;
+  a.w.assign(n, 0.0);
+  a.p.assign(n, 0.0);
+  if (!first.has_stick) return a;
+  // The limit is a complete contact over [c_l, c_r]: on a grid whose cell boundaries fall on c_l and c_r, its
+  // corners are exact, as for a sharp punch (whole cells of the contact grid would misplace them by up to h/2).
+  const double cl = first.stick_left, cr = first.stick_right;
+  const double h = (cr - cl) / std::max(1.0, std::round((cr - cl) / grid.h()));
+  const double lo = cl - std::round((cl - grid.x_min) / h) * h;
+  const Grid aligned{lo, lo + n * h, n};
+  const HalfPlaneKernel kernel(aligned, model.pair.A());
+  std::vector<double> g0(n), g(n);
+  for (int i = 0; i < n; ++i) {
+    g0[i] = model.profile.gap(aligned.x(i));
+    g[i] = aligned.x(i) > cl && aligned.x(i) < cr ? g0[i] : std::numeric_limits<double>::infinity();
+  }
   ContactState state;
-  state.p = normal.state.p;
-  const NormalSolver solver(*model.kernel);
+  const NormalSolver solver(kernel);
   const SolveSummary s = solver.solve(g, scene.P, state);
   if (!s.converged())
     throw ConvergenceError(fmt::format("wear: the asymptotic complete-contact solve stopped ({}) with residual {:.3g}",
                                        to_string(s.termination), s.residual));
-  a.p = state.p;
-  std::vector<double> u(n);
-  model.kernel->apply(a.p, u);
-  a.w.assign(n, 0.0);
-  a.extent = {grid.x_max, grid.x_min};
+  std::vector<double> u(n), w(n, 0.0);
+  kernel.apply(state.p, u);
+  a.extent = {aligned.x_max, aligned.x_min};
   for (int i = 0; i < n; ++i) {
-    if (stick_p[i] > 0.0 || !std::isfinite(model.g0[i])) continue;
-    const double overlap = -(model.g0[i] + u[i] - state.approach);
+    if (std::isfinite(g[i]) || !std::isfinite(g0[i])) continue;
+    const double overlap = -(g0[i] + u[i] - state.approach);
     if (overlap <= 0.0) continue;
-    a.w[i] = overlap;
-    a.worn_area += overlap * grid.h();
-    if (overlap > a.max_depth) a.max_depth = overlap, a.x_max_depth = grid.x(i);
-    a.extent = {std::min(a.extent.first, grid.left(i)), std::max(a.extent.second, grid.left(i + 1))};
+    w[i] = overlap;
+    a.worn_area += overlap * h;
+    if (overlap > a.max_depth) a.max_depth = overlap, a.x_max_depth = aligned.x(i);
+    a.extent = {std::min(a.extent.first, aligned.left(i)), std::max(a.extent.second, aligned.left(i + 1))};
+  }
+  // On the contact grid (the grids differ by less than a cell): linear interpolation between aligned centres.
+  auto on_aligned = [&](const std::vector<double>& v, double x) {
+    const double t = (x - aligned.x_min) / h - 0.5;
+    const int i = std::clamp(int(std::floor(t)), 0, n - 2);
+    const double f = std::clamp(t - i, 0.0, 1.0);
+    return (1.0 - f) * v[i] + f * v[i + 1];
+  };
+  for (int i = 0; i < n; ++i) {
+    a.w[i] = on_aligned(w, grid.x(i));
+    a.p[i] = grid.x(i) > cl && grid.x(i) < cr ? on_aligned(state.p, grid.x(i)) : 0.0;
   }
   return a;
 }
@@ -185,6 +210,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.rejected_steps = stepper.stats().rejected;
   stage.implicit_solves = stepper.stats().implicit_solves;
   stage.responses = stepper.stats().responses;
+  stage.mean_iterations_cycle = double(contact.cycle_iterations) / double(std::max(1L, contact.cycle_solves));
+  stage.mean_iterations_implicit = double(contact.implicit_iterations) / double(std::max(1L, contact.implicit_solves));
   return stage;
 }
 

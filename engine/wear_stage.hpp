@@ -46,6 +46,7 @@ struct WearStage {
   double rate_coefficient = 0.0;    // c in dw/dN = c p s (1/Pa)
   double stability_limit = 0.0;     // the explicit jump limit 1.5 Δx/(E* c s_max) at the start (cycles)
   int steps = 0, rejected_steps = 0, implicit_solves = 0, responses = 0;
+  double mean_iterations_cycle = 0.0, mean_iterations_implicit = 0.0;  // CG iterations per warm-started solve
 };
 
 // The steady-cycle slip and stick zone on a worn profile, by the analogy route (similar bodies, constant P).
@@ -58,6 +59,8 @@ class AnalogyContactResponse : public wear::ContactResponse {
   void implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
   // The last normal and corrective pressures (for records).
   const std::vector<double>& corrective_pressure() const { return corrective_.p; }
+  // Solves and their CG iterations, by kind: the cycle (normal and corrective) and the contact-implicit steps.
+  long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
 
  private:
   const Scene& scene_;

@@ -52,6 +52,16 @@ class ImplicitWearStepper {
     return try_step_impl(contact, w, N, dN);
   }
 
+  // One lagged-slip backward-Euler step of exactly dN from w, without error control (for tests and studies).
+  void euler_step(ContactResponse& contact, state_type& w, double dN) {
+    CycleResponse r;
+    contact.respond(w, r);
+    std::vector<double> p = r.p;
+    state_type out;
+    euler(contact, w, r.s, dN, p, out);
+    w = out;
+  }
+
   const ImplicitStepperStats& stats() const { return stats_; }
   // The response at the last accepted state (valid after a step), to spare the observer a solve.
   const CycleResponse* last_response() const { return response_valid_ ? &response_ : nullptr; }

@@ -1,5 +1,6 @@
 #include "engine/output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -7,6 +8,8 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+
+#include "engine/wear_stage.hpp"
 
 namespace fretwear {
 namespace fs = std::filesystem;
@@ -155,6 +158,196 @@ set xrange [{}:{}]
   return out;
 }
 
+// One row per wear record (SI); the stick-zone ends are empty when the contact slips everywhere.
+std::string wear_history_csv(const WearStage& w) {
+  std::string s = "cycles,worn_area_m2,max_depth_m,fraction_of_asymptote,stick_left_m,stick_right_m,contact_left_m,"
+                  "contact_right_m,p_max_Pa\n";
+  for (const WearRecord& r : w.records)
+    s += fmt::format("{},{},{},{},{},{},{},{},{}\n", num(r.cycles), num(r.worn_area), num(r.max_depth),
+                     num(r.fraction), r.stick_zone ? num(r.stick_zone->first) : "",
+                     r.stick_zone ? num(r.stick_zone->second) : "", num(r.contact.first), num(r.contact.second),
+                     num(r.p_max));
+  return s;
+}
+
+// Long format: one row per record and cell, then the asymptote as rows with cycles = inf (its slip is left empty:
+// the asymptote is a limit, not a cycle). Rows of record k are rows k·n ... k·n + n − 1 after the header.
+std::string profiles_csv(const Scene& scene, const NormalResult& n, const WearStage& w) {
+  const double pad = scene.wear->pad_fraction;
+  std::string s = "cycles,x_m,gap0_m,wear_m,wear_pad_m,wear_specimen_m,p_Pa,slip_per_cycle_m\n";
+  s.reserve(s.size() + (w.records.size() + 1) * std::size_t(n.grid.n) * 110);
+  for (const WearRecord& r : w.records) {
+    const std::string c = num(r.cycles);
+    for (int i = 0; i < n.grid.n; ++i)
+      s += fmt::format("{},{},{},{},{},{},{},{}\n", c, num(n.grid.x(i)), num(n.g0[i]), num(r.w[i]),
+                       num(pad * r.w[i]), num((1.0 - pad) * r.w[i]), num(r.p[i]), num(r.s[i]));
+  }
+  const WearAsymptote& a = w.asymptote;
+  if (a.w.size() != std::size_t(n.grid.n) || a.p.size() != std::size_t(n.grid.n)) return s;
+  for (int i = 0; i < n.grid.n; ++i)
+    s += fmt::format("inf,{},{},{},{},{},{},\n", num(n.grid.x(i)), num(n.g0[i]), num(a.w[i]), num(pad * a.w[i]),
+                     num((1.0 - pad) * a.w[i]), num(a.p[i]));
+  return s;
+}
+
+// The records the evolution plots show: the initial state and at most 7 more, spread evenly in log cycles, always
+// with the last.
+std::vector<std::size_t> plotted_records(const WearStage& w) {
+  constexpr std::size_t kMore = 7;
+  std::vector<std::size_t> out, worn;
+  for (std::size_t k = 0; k < w.records.size(); ++k) (w.records[k].cycles > 0.0 ? worn : out).push_back(k);
+  if (worn.size() <= kMore) {
+    for (std::size_t k : worn) out.push_back(k);
+    return out;
+  }
+  // Each target in turn takes the nearest record not yet taken; targets and records both increase, so the picks do.
+  const double lo = std::log(w.records[worn.front()].cycles), hi = std::log(w.records[worn.back()].cycles);
+  std::size_t next = 0;  // the first record in `worn` still free
+  for (std::size_t j = 0; j < kMore; ++j) {
+    const double target = lo + (hi - lo) * double(j) / double(kMore - 1);
+    const std::size_t last_free = worn.size() - (kMore - j);  // leave one record for each later target
+    std::size_t best = next;
+    for (std::size_t i = next; i <= last_free; ++i)
+      if (std::abs(std::log(w.records[worn[i]].cycles) - target) <
+          std::abs(std::log(w.records[worn[best]].cycles) - target))
+        best = i;
+    out.push_back(worn[best]);
+    next = best + 1;
+  }
+  return out;
+}
+
+// A colour ramp from dark blue to orange (matplotlib's plasma, up to 0.85): t in [0, 1].
+std::string ramp(double t) {
+  static const int stops[5][3] = {{13, 8, 135}, {106, 0, 168}, {177, 42, 144}, {225, 100, 98}, {244, 150, 40}};
+  t = std::clamp(t, 0.0, 1.0) * 4.0;
+  const int k = std::min(3, int(t));
+  const double u = t - k;
+  int c[3];
+  for (int j = 0; j < 3; ++j) c[j] = int(std::lround(stops[k][j] + u * (stops[k + 1][j] - stops[k][j])));
+  return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+}
+
+// A cycle count for a legend (gnuplot enhanced text): 0, 250, 3.16×10^5.
+std::string cycles_label(double c) {
+  if (c == 0.0) return "N = 0 (unworn)";
+  if (c < 1e4) return fmt::format("N = {:.0f}", c);
+  const int e = int(std::floor(std::log10(c) + 1e-12));
+  const double m = c / std::pow(10.0, e);
+  if (std::abs(m - std::round(m)) < 5e-3) return fmt::format("N = {:.0f}×10^{{{}}}", std::round(m), e);
+  return fmt::format("N = {:.3g}×10^{{{}}}", m, e);
+}
+
+std::string svg_and_png(const std::string& stem, const std::string& plot, int width = 1000, int height = 560) {
+  return fmt::format("set terminal svg size {0},{1} dynamic font 'sans,12'\nset output '{2}.svg'\n{3}"
+                     "set terminal pngcairo size {0},{1} font 'sans,11'\nset output '{2}.png'\nreplot\nunset output\n",
+                     width, height, stem, plot);
+}
+
+// wear.gp: the worn profile and the pressure as they evolve (with the asymptote dashed), the stick zone and the
+// worn area against cycles.
+std::string wear_plot_script(const Scene& scene, const NormalResult& n, const WearStage& w) {
+  const int cells = n.grid.n;
+  const std::vector<std::size_t> shown = plotted_records(w);
+  const WearAsymptote& a = w.asymptote;
+  const WearRecord& last = w.records.back();
+  // The x range: the region that wears (the asymptote's extent, or the last contact) with a quarter margin.
+  double l = std::min(a.extent.first, last.contact.first), r = std::max(a.extent.second, last.contact.second);
+  for (const auto& z : n.zones) l = std::min(l, z.left.x), r = std::max(r, z.right.x);
+  const double m = 0.25 * (r - l);
+  l = std::max(n.grid.x_min, l - m), r = std::min(n.grid.x_max, r + m);
+
+  std::string s = fmt::format(R"(# The wear run. Re-run with: gnuplot wear.gp
+# profiles.csv holds {0} rows per record (record k: data rows k*{0} ... k*{0}+{1}, counted from 0 after the header);
+# the asymptote (cycles = inf) comes last.
+set datafile separator ','
+set grid
+)", cells, cells - 1);
+  const auto series = [&](const std::string& column, const std::string& asymptote_title) {
+    std::string plot = "plot ";
+    for (std::size_t j = 0; j < shown.size(); ++j) {
+      const std::size_t k = shown[j];
+      const double t = shown.size() > 1 ? double(j) / double(shown.size() - 1) : 1.0;
+      plot += fmt::format("'profiles.csv' skip 1 every ::{}::{} using ($2*1e3):({}) with lines lw 1.5 "
+                          "lc rgb '{}' title '{}', ",
+                          k * cells, k * cells + cells - 1, column, ramp(t),
+                          cycles_label(w.records[k].cycles));
+    }
+    const std::size_t k = w.records.size();
+    if (a.w.size() != std::size_t(cells)) return plot.substr(0, plot.size() - 2) + "\n";  // no asymptote rows
+    plot += fmt::format("'profiles.csv' skip 1 every ::{}::{} using ($2*1e3):({}) with lines lw 2 dt 2 "
+                        "lc rgb '#000000' title '{}'\n",
+                        k * cells, k * cells + cells - 1, column, asymptote_title);
+    return plot;
+  };
+  const std::string law = scene.wear->law == "archard" ? "Archard k" : "energy α";
+  s += fmt::format("set xrange [{}:{}]\nset xlabel 'x (mm)'\nset key outside right top\n", l * 1e3, r * 1e3);
+  s += fmt::format("set title \"{}: wear depth, both bodies ({} = {:.3g} 1/Pa; pad share {:.3g})\" noenhanced\n",
+                   scene.name, law, scene.wear->coefficient, scene.wear->pad_fraction);
+  s += "set ylabel 'wear depth w (µm)'\nset yrange [0:*]\n";
+  s += svg_and_png("wear_depth", series("$4*1e6", "asymptote"));
+  s += fmt::format("set title \"{}: contact pressure as the slip zones wear (the asymptote's is singular at the "
+                   "stick-zone ends)\" noenhanced\n", scene.name);
+  s += "set ylabel 'pressure p (MPa)'\n";
+  s += svg_and_png("wear_pressure", series("$7*1e-6", "asymptote"));
+
+  // Against cycles: log axis; the unworn record (cycles = 0) cannot be shown there.
+  double n_lo = last.cycles;
+  for (const WearRecord& rec : w.records)
+    if (rec.cycles > 0.0) n_lo = std::min(n_lo, rec.cycles);
+  s += "\nunset xrange\nunset yrange\nset logscale x\nset format x '10^{%L}'\nset xlabel 'cycles N'\n";
+  s += "set key inside right center opaque box\n";
+  if (n_lo < last.cycles)
+    s += fmt::format("set xrange [{}:{}]\n", std::pow(10.0, std::floor(std::log10(n_lo))),
+                     std::pow(10.0, std::ceil(std::log10(last.cycles))));
+  const auto& s0 = w.records.front().stick_zone;
+  std::string stick;
+  if (s0) {
+    // Both ends and the contact's ends on one scale: the stick zone standing still inside a growing contact.
+    double lo = s0->first, hi = s0->second;
+    for (const WearRecord& rec : w.records) {
+      lo = std::min(lo, rec.contact.first), hi = std::max(hi, rec.contact.second);
+      if (rec.stick_zone) lo = std::min(lo, rec.stick_zone->first), hi = std::max(hi, rec.stick_zone->second);
+    }
+    const double pad = 0.08 * (hi - lo);
+    s += fmt::format("set yrange [{}:{}]\n", (lo - pad) * 1e3, (hi + pad) * 1e3);
+    s += fmt::format("set title \"{}: stick zone and contact extent against cycles\" noenhanced\n", scene.name);
+    s += "set ylabel 'x (mm)'\n";
+    stick = fmt::format(
+        "plot {0} with lines lw 9 lc rgb '#d9d9d9' title 'initial stick zone', "
+        "{1} with lines lw 9 lc rgb '#d9d9d9' notitle, "
+        "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($5*1e3) with linespoints pt 7 ps 0.7 lw 1.5 "
+        "lc rgb '#1f77b4' title 'stick zone, left end', "
+        "'' skip 1 using ($1 > 0 ? $1 : NaN):($6*1e3) with linespoints pt 5 ps 0.7 lw 1.5 lc rgb '#d62728' "
+        "title 'stick zone, right end', "
+        "'' skip 1 using ($1 > 0 ? $1 : NaN):($7*1e3) with linespoints pt 6 ps 0.7 lw 1 lc rgb '#6baed6' "
+        "title 'contact, left end', "
+        "'' skip 1 using ($1 > 0 ? $1 : NaN):($8*1e3) with linespoints pt 4 ps 0.7 lw 1 lc rgb '#fc9272' "
+        "title 'contact, right end'\n",
+        num(s0->first * 1e3), num(s0->second * 1e3));
+    s += svg_and_png("wear_stick_zone", stick);
+  }
+  const double area_top = 1.12 * std::max(a.worn_area, [&] {
+    double v = 0.0;
+    for (const WearRecord& rec : w.records) v = std::max(v, rec.worn_area);
+    return v;
+  }());
+  s += fmt::format("set title \"{}: worn area against cycles\" noenhanced\n", scene.name);
+  s += "set key inside left top opaque box\nset ylabel 'worn area ∫ w dx (µm²)'\n";
+  if (area_top > 0.0) {
+    s += fmt::format("set yrange [0:{}]\n", area_top * 1e12);
+    if (a.worn_area > 0.0)
+      s += fmt::format("set y2range [0:{}]\nset y2label 'fraction of the asymptote'\nset ytics nomirror\n"
+                       "set y2tics\n", area_top / a.worn_area);
+  }
+  s += svg_and_png("wear_area",
+                   fmt::format("plot {} with lines lw 2 dt 2 lc rgb '#000000' title 'asymptote', "
+                               "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($2*1e12) with linespoints pt 7 "
+                               "ps 0.7 lw 1.5 lc rgb '#1f77b4' title 'fretwear'\n",
+                               num(a.worn_area * 1e12)));
+  return s;
+}
+
 void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std::string, std::string>>& rows) {
   if (j.is_object()) {
     for (const auto& [k, v] : j.items()) flatten(v, prefix.empty() ? k : prefix + "." + k, rows);
@@ -163,7 +356,8 @@ void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std
   }
 }
 
-std::string index_html(const Scene& scene, const json& summary, const std::vector<std::string>& plots) {
+std::string index_html(const Scene& scene, const json& summary, const std::vector<std::string>& plots,
+                       const std::vector<std::string>& tables) {
   std::vector<std::pair<std::string, std::string>> rows;
   flatten(summary, "", rows);
   std::string s = fmt::format(R"(<!doctype html>
@@ -171,9 +365,10 @@ std::string index_html(const Scene& scene, const json& summary, const std::vecto
 <style>body{{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}}
 table{{border-collapse:collapse}}td{{border-bottom:1px solid #ddd;padding:2px 10px;font-family:monospace}}</style>
 </head><body><h1>{0}</h1>
-<p>fretwear {1}. Files: <a href="summary.json">summary.json</a>, <a href="scene.resolved.json">scene.resolved.json</a>,
-<a href="contact.csv">contact.csv</a>.</p>
-)", scene.name, summary.value("version", ""));
+<p>fretwear {1}. Files: <a href="summary.json">summary.json</a>, <a href="scene.resolved.json">scene.resolved.json</a>)",
+                              scene.name, summary.value("version", ""));
+  for (const auto& t : tables) s += fmt::format(",\n<a href=\"{0}\">{0}</a>", t);
+  s += ".</p>\n";
   for (const auto& plot : plots)
     if (plot.ends_with(".svg")) s += fmt::format("<p><img src=\"{0}\" alt=\"{0}\" width=\"900\"></p>\n", plot);
   s += "<h2>Summary</h2><table>\n";
@@ -190,8 +385,12 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
   resolved.window = std::pair(result.normal.grid.x_min, result.normal.grid.x_max);
   out.write_json("scene.resolved.json", resolved.to_json());
   out.write("contact.csv", contact_csv(result.normal));
+  std::vector<std::string> tables{"contact.csv"};
   const bool slips = result.cycle && result.cycle->result.regime != Regime::gross_slip;
-  if (slips) out.write("cycle.csv", cycle_csv(result.normal, result.cycle->result));
+  if (slips) {
+    out.write("cycle.csv", cycle_csv(result.normal, result.cycle->result));
+    tables.push_back("cycle.csv");
+  }
   std::vector<std::string> plots;
   if (scene.plots) {
     out.write("pressure.gp", pressure_plot_script(scene, result.normal));
@@ -202,9 +401,23 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
         plots.insert(plots.end(), {"traction.svg", "traction.png", "slip.svg", "slip.png"});
     }
   }
+  if (result.wear) {
+    const WearStage& w = *result.wear;
+    out.write("wear_history.csv", wear_history_csv(w));
+    out.write("profiles.csv", profiles_csv(scene, result.normal, w));
+    tables.insert(tables.end(), {"wear_history.csv", "profiles.csv"});
+    if (scene.plots) {
+      out.write("wear.gp", wear_plot_script(scene, result.normal, w));
+      if (run_gnuplot(out.path(""), "wear.gp")) {
+        plots.insert(plots.end(), {"wear_depth.svg", "wear_depth.png", "wear_pressure.svg", "wear_pressure.png"});
+        if (w.records.front().stick_zone) plots.insert(plots.end(), {"wear_stick_zone.svg", "wear_stick_zone.png"});
+        plots.insert(plots.end(), {"wear_area.svg", "wear_area.png"});
+      }
+    }
+  }
   summary["plots"] = plots;
   out.write_json("summary.json", summary);
-  out.write("index.html", index_html(scene, summary, plots));
+  out.write("index.html", index_html(scene, summary, plots, tables));
   return summary;
 }
 

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -146,4 +147,46 @@ TEST_CASE("convergence writes its table") {
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   CHECK(rows == 4);  // header and 128, 256, 512
+}
+
+TEST_CASE("a wear run writes wear_history.csv, profiles.csv and the wear plots") {
+  TempDir tmp;
+  write(tmp.path / "w.json", R"({"name": "wear", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}},
+    "grid": {"cells": 256}, "effects": {"wear": {"k": 1e-12, "cycles": 1e5, "record": 4}}})");
+  std::string out;
+  REQUIRE(run_cli(tmp.path, "run w.json -q", &out) == 0);
+  const fs::path dir = tmp.path / "output" / "wear";
+  auto lines = [](const fs::path& p) {
+    std::vector<std::string> v;
+    std::ifstream in(p);
+    for (std::string line; std::getline(in, line);) v.push_back(line);
+    return v;
+  };
+  const auto history = lines(dir / "wear_history.csv");
+  REQUIRE(history.size() == 6);  // the header, record 0 and the 4 asked for
+  CHECK(history[0] == "cycles,worn_area_m2,max_depth_m,fraction_of_asymptote,stick_left_m,stick_right_m,"
+                      "contact_left_m,contact_right_m,p_max_Pa");
+  CHECK(history[1].rfind("0,0,0,0,", 0) == 0);  // record 0: nothing worn yet
+  CHECK(history[5].rfind("100000,", 0) == 0);   // the last record is the last cycle
+  // The summary's final worn area is the last row's.
+  const json summary = json::parse(std::ifstream(dir / "summary.json"));
+  CHECK(std::stod(history[5].substr(history[5].find(',') + 1)) ==
+        fretwear::test::rel(summary["wear"]["worn_area"].get<double>(), 1e-9));
+  // profiles.csv: one row per record and cell, then the asymptote (cycles = inf).
+  const auto profiles = lines(dir / "profiles.csv");
+  REQUIRE(profiles.size() == 1 + 6 * 256);
+  CHECK(profiles[0] == "cycles,x_m,gap0_m,wear_m,wear_pad_m,wear_specimen_m,p_Pa,slip_per_cycle_m");
+  CHECK(profiles[1 + 5 * 256].rfind("inf,", 0) == 0);
+  CHECK(profiles.back().rfind("inf,", 0) == 0);
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    for (const char* f : {"wear.gp", "wear_depth.svg", "wear_depth.png", "wear_pressure.svg", "wear_pressure.png",
+                          "wear_stick_zone.svg", "wear_stick_zone.png", "wear_area.svg", "wear_area.png"})
+      CHECK_MESSAGE(fs::exists(dir / f), f);
+    CHECK(!fs::exists(dir / "gnuplot.log"));  // gnuplot said nothing: no warnings from the script
+    std::ifstream html(dir / "index.html");
+    const std::string index(std::istreambuf_iterator<char>(html), {});
+    CHECK(index.find("wear_area.svg") != std::string::npos);
+    CHECK(index.find("profiles.csv") != std::string::npos);
+  }
 }

@@ -152,7 +152,7 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
 
   auto& g = state.gap;
   g.assign(n, 0.0);
-  std::vector<double> u(n), t(n, 0.0), v(n), z(preconditioned ? n : 0);
+  std::vector<double> u(n), t(n, 0.0), v(n), z(preconditioned ? n : 0), e(preconditioned ? n : 0);
   std::vector<char> work(n);
   std::vector<int> changed;  // cells where projection or re-entry changed p − τ t
   std::vector<double> change;
@@ -223,14 +223,26 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
       if (shifted)
         for (int i = 0; i < n; ++i)
           if (work[i] && shift[i] > k00) z[i] = g[i] / (k00 + shift[i]);
-      double z_sum = 0.0;
-      int n_work = 0;
+      // Keep the direction load-neutral (Σ z = 0 on the working set). Unshifted, the plain mean is subtracted (the
+      // symbol preconditioner is nearly uniform there). Shifted, the Jacobi block scales cells by up to 1e6
+      // against the symbol block, and only the projection in the preconditioner's metric keeps CG consistent:
+      // z = M⁻¹ g − λ M⁻¹ 1 with λ = Σ M⁻¹g / Σ M⁻¹1 (a plain mean stalled every wear-sized shift).
+      std::fill(e.begin(), e.end(), 0.0);
+      if (shifted) {
+        for (int i = 0; i < n; ++i) e[i] = work[i] && !(shift[i] > k00) ? 1.0 : 0.0;
+        kernel_.fft().apply_spectrum(inverse, e, e);
+        for (int i = 0; i < n; ++i)
+          if (work[i] && shift[i] > k00) e[i] = 1.0 / (k00 + shift[i]);
+      } else {
+        for (int i = 0; i < n; ++i) e[i] = work[i] ? 1.0 : 0.0;
+      }
+      double z_sum = 0.0, e_sum = 0.0;
       for (int i = 0; i < n; ++i)
-        if (work[i]) z_sum += z[i], ++n_work;
-      const double z_mean = z_sum / n_work;
+        if (work[i]) z_sum += z[i], e_sum += e[i];
+      const double lambda = z_sum / e_sum;
       rz = 0.0;
       for (int i = 0; i < n; ++i) {
-        z[i] = work[i] ? z[i] - z_mean : 0.0;
+        z[i] = work[i] ? z[i] - lambda * e[i] : 0.0;
         if (work[i]) rz += g[i] * z[i];
       }
     }

@@ -469,9 +469,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                                          "a whole number of cycles from 1 to 1e12"})
                           .value_or(1.0);
       effect.stepper = rw.string("stepper", "implicit", "\"implicit\", \"explicit\" or \"cycle_by_cycle\"").value_or("implicit");
-      if (effect.stepper == "explicit" || effect.stepper == "cycle_by_cycle")
-        rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not supported yet; use \"implicit\"", effect.stepper));
-      else if (effect.stepper != "implicit")
+      if (effect.stepper != "implicit" && effect.stepper != "explicit" && effect.stepper != "cycle_by_cycle")
         rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not a stepper; use \"implicit\", \"explicit\" or "
                                                        "\"cycle_by_cycle\"", effect.stepper));
       effect.tolerance = rw.number("tolerance", 1e-3, {[](double v) { return v > 0.0 && v <= 0.1; },

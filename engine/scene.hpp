@@ -41,7 +41,7 @@ struct WearEffect {
   double coefficient = 0.0;         // k or alpha (1/Pa)
   double pad_fraction = 0.5;        // share of the wear on the pad
   double cycles = 0.0;              // a whole number of cycles
-  std::string stepper = "implicit"; // "implicit" ("explicit", "cycle_by_cycle" not built yet)
+  std::string stepper = "implicit"; // "implicit", "explicit" or "cycle_by_cycle" (engine/wear_stage.hpp)
   double tolerance = 1e-3;          // relative, on the worn profile, per step
   std::vector<double> record;       // cycles at which the state is recorded (increasing, last = cycles)
   int record_count = 16;            // when record was given as a count (log-spaced)

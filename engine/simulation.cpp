@@ -296,6 +296,10 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
           {"max_depth", w.asymptote.max_depth},
           {"x_max_depth", w.asymptote.x_max_depth},
           {"extent", {w.asymptote.extent.first, w.asymptote.extent.second}}}}};
+    if (e.stepper == "explicit") {  // the cap on ΔN below the stability limit, and the longest step taken (cycles)
+      summary["wear"]["explicit_step_cap"] = w.explicit_step_cap;
+      summary["wear"]["explicit_max_step"] = w.explicit_max_step;
+    }
   }
   return summary;
 }

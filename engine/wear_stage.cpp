@@ -172,7 +172,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     rate_max = std::max(rate_max, stage.rate_coefficient * response.p[i] * response.s[i]);
     s_max = std::max(s_max, response.s[i]);
   }
-  stage.stability_limit = s_max > 0.0 ? 1.5 * h / (model.pair.E_star() * stage.rate_coefficient * s_max) : 0.0;
+  stage.stability_limit = wear::explicit_stability_limit(h, model.pair.E_star(), stage.rate_coefficient, s_max);
 
   auto record = [&](const std::vector<double>& state, double cycles) {
     wear::CycleResponse r;
@@ -201,15 +201,41 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     for (double t : times) record(w, t);
     return stage;
   }
-  // First jump: a small share of the asymptote's depth at the initial rate, bounded by the first record.
-  double dN = std::max(1.0, effect.tolerance * stage.asymptote.max_depth / rate_max);
-  wear::ImplicitWearStepper stepper(stage.rate_coefficient, effect.tolerance);
-  boost::numeric::odeint::integrate_times(std::ref(stepper), wear::ResponseRef{&contact}, w, times.begin(),
-                                          times.end(), dN, record);
-  stage.steps = stepper.stats().accepted;
-  stage.rejected_steps = stepper.stats().rejected;
-  stage.implicit_solves = stepper.stats().implicit_solves;
-  stage.responses = stepper.stats().responses;
+  namespace odeint = boost::numeric::odeint;
+  if (effect.stepper == "explicit") {
+    // abs: the tolerance on the scale of the depth the run wears toward, as the implicit stepper's max-norm.
+    const double depth = stage.asymptote.max_depth > 0.0 ? stage.asymptote.max_depth : rate_max * effect.cycles;
+    stage.explicit_step_cap = kExplicitCapFraction * stage.stability_limit;
+    wear::ExplicitWearStepper stepper(effect.tolerance * depth, effect.tolerance, stage.explicit_step_cap);
+    wear::WearRateSystem rate(contact, stage.rate_coefficient);
+    const double dN = std::min(stage.explicit_step_cap, std::max(1.0, effect.tolerance * depth / rate_max));
+    odeint::integrate_times(std::ref(stepper), std::ref(rate), w, times.begin(), times.end(), dN, record);
+    stage.steps = stepper.stats().accepted;
+    stage.rejected_steps = stepper.stats().rejected;
+    stage.explicit_max_step = stepper.stats().max_step;
+    stage.responses = int(rate.evaluations());
+  } else if (effect.stepper == "cycle_by_cycle") {
+    if (!(stage.stability_limit > wear::kCycle))
+      throw UnsupportedError(fmt::format(
+          "effects.wear.stepper: \"cycle_by_cycle\" wears one cycle at a time, an explicit jump of one cycle, which "
+          "is unstable here: the explicit stability limit 1.5 Δx/(E* c s_max) is {:.3g} cycles. Use \"implicit\", "
+          "or coarser cells or a smaller wear coefficient",
+          stage.stability_limit));
+    wear::WearRateSystem rate(contact, stage.rate_coefficient);
+    stage.steps = int(odeint::integrate_times(wear::CycleByCycleStepper(), std::ref(rate), w, times.begin(),
+                                              times.end(), wear::kCycle, record));
+    stage.responses = int(rate.evaluations());
+  } else {
+    // First jump: a small share of the asymptote's depth at the initial rate, bounded by the first record.
+    double dN = std::max(1.0, effect.tolerance * stage.asymptote.max_depth / rate_max);
+    wear::ImplicitWearStepper stepper(stage.rate_coefficient, effect.tolerance);
+    odeint::integrate_times(std::ref(stepper), wear::ResponseRef{&contact}, w, times.begin(), times.end(), dN,
+                            record);
+    stage.steps = stepper.stats().accepted;
+    stage.rejected_steps = stepper.stats().rejected;
+    stage.implicit_solves = stepper.stats().implicit_solves;
+    stage.responses = stepper.stats().responses;
+  }
   stage.mean_iterations_cycle = double(contact.cycle_iterations) / double(std::max(1L, contact.cycle_solves));
   stage.mean_iterations_implicit = double(contact.implicit_iterations) / double(std::max(1L, contact.implicit_solves));
   return stage;

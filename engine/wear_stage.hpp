@@ -11,6 +11,7 @@
 #include "engine/scene.hpp"
 #include "wear/contact_response.hpp"
 #include "wear/implicit_stepper.hpp"
+#include "wear/reference_steppers.hpp"
 
 namespace fretwear {
 
@@ -45,6 +46,9 @@ struct WearStage {
   WearAsymptote asymptote;
   double rate_coefficient = 0.0;    // c in dw/dN = c p s (1/Pa)
   double stability_limit = 0.0;     // the explicit jump limit 1.5 Δx/(E* c s_max) at the start (cycles)
+  double explicit_step_cap = 0.0;   // stepper "explicit": the cap on ΔN, kExplicitCapFraction · stability_limit
+                                    // (cycles); 0 for the other steppers
+  double explicit_max_step = 0.0;   // stepper "explicit": the longest accepted step (cycles), ≤ the cap
   int steps = 0, rejected_steps = 0, implicit_solves = 0, responses = 0;
   double mean_iterations_cycle = 0.0, mean_iterations_implicit = 0.0;  // CG iterations per warm-started solve
 };
@@ -73,7 +77,15 @@ class AnalogyContactResponse : public wear::ContactResponse {
 
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal);
 
-// Runs the wear of a scene; the normal solution and the first cycle have been computed on the same model.
+// The explicit stepper's cap on ΔN as a share of the forward-Euler limit 1.5 Δx/(E* c s_max). Dormand–Prince's
+// stability region reaches about 3.3 along the negative real axis where Euler's reaches 2, so this leaves dopri5 a
+// margin of about 1.5 for the limit's drift as the profile wears and for the estimate's own approximation.
+inline constexpr double kExplicitCapFraction = 0.9;
+
+// Runs the wear of a scene with the stepper it names (effects.wear.stepper): "implicit" (the default), "explicit"
+// (Dormand–Prince capped below the stability limit; small problems) or "cycle_by_cycle" (every cycle worn, the
+// reference on short runs; throws UnsupportedError when one cycle exceeds the stability limit). The normal solution
+// and the first cycle have been computed on the same model.
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal);
 
 }  // namespace fretwear

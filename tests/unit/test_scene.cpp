@@ -224,12 +224,16 @@ TEST_CASE("the wear effect: law and its coefficient, cycles, stepper, tolerance,
   CHECK(s.tangential_implied);
   CHECK(s.wear->record_count == 16);
   CHECK(parse_scene(s.to_json()).to_json() == s.to_json());
-  j["effects"]["wear"] = {{"law", "energy"}, {"k", 1e-15}, {"cycles", 1.5}, {"stepper", "explicit"},
+  for (const char* stepper : {"implicit", "explicit", "cycle_by_cycle"}) {
+    j["effects"]["wear"]["stepper"] = stepper;
+    CHECK(parse_scene(j).wear->stepper == stepper);
+  }
+  j["effects"]["wear"] = {{"law", "energy"}, {"k", 1e-15}, {"cycles", 1.5}, {"stepper", "rk45"},
                           {"tolerance", 0.5}, {"record", {10, 5}}, {"pad_fraction", 2}};
   CHECK(reports(j, "effects.wear.alpha", {"missing"}));
   CHECK(reports(j, "effects.wear.k", {"other law"}));
   CHECK(reports(j, "effects.wear.cycles", {"whole number"}));
-  CHECK(reports(j, "effects.wear.stepper", {"not supported yet"}));
+  CHECK(reports(j, "effects.wear.stepper", {"not a stepper", "\"implicit\"", "\"explicit\"", "\"cycle_by_cycle\""}));
   CHECK(reports(j, "effects.wear.tolerance", {"(0, 0.1]"}));
   CHECK(reports(j, "effects.wear.pad_fraction", {"[0, 1]"}));
   j["effects"]["wear"] = {{"law", "archard"}, {"k", 1e-15}, {"cycles", 100}, {"record", {10, 5}}};

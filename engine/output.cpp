@@ -244,6 +244,106 @@ std::string svg_and_png(const std::string& stem, const std::string& plot, int wi
                      width, height, stem, plot);
 }
 
+std::string sif_csv(const RunResult& r) {
+  std::string s = "cycles,phase,length_m,K_I_Pa_sqrt_m,K_I_open_Pa_sqrt_m,K_II_Pa_sqrt_m,closed\n";
+  for (const SifSet& set : r.sifs)
+    for (const CrackSif& k : set.result.sifs)
+      s += fmt::format("{},{},{},{},{},{},{}\n", num(set.cycles), set.phase, num(k.l), num(k.K_I), num(k.K_I_open),
+                       num(k.K_II), k.closed ? 1 : 0);
+  return s;
+}
+
+std::string stress_csv(const RunResult& r, double nu) {
+  std::string s = "phase,x_m,y_m,sxx_Pa,syy_Pa,sxy_Pa,von_mises_Pa,s1_Pa,s2_Pa\n";
+  for (const StressMap& m : r.stress_maps)
+    for (std::size_t j = 0; j < m.y.size(); ++j)
+      for (std::size_t i = 0; i < m.x.size(); ++i) {
+        const Stress& t = m.sigma[j * m.x.size() + i];
+        const Principal pr = principal(t);
+        s += fmt::format("{},{},{},{},{},{},{},{},{}\n", m.phase, num(m.x[i]), num(m.y[j]), num(t.xx), num(t.yy),
+                         num(t.xy), num(von_mises(t, nu)), num(pr.s1), num(pr.s2));
+      }
+  return s;
+}
+
+std::string surface_stress_csv(const RunResult& r) {
+  std::string s = "phase,x_m,sxx_Pa\n";
+  for (const StressMap& m : r.stress_maps)
+    for (std::size_t i = 0; i < m.x.size(); ++i) s += fmt::format("{},{},{}\n", m.phase, num(m.x[i]), num(m.surface_sxx[i]));
+  return s;
+}
+
+// gnuplot's pm3d wants one block per depth: x, y, σxx, σyy, σxy, von Mises.
+std::string stress_map_dat(const StressMap& m, double nu) {
+  std::string s;
+  for (std::size_t j = 0; j < m.y.size(); ++j) {
+    for (std::size_t i = 0; i < m.x.size(); ++i) {
+      const Stress& t = m.sigma[j * m.x.size() + i];
+      s += fmt::format("{} {} {} {} {} {}\n", num(m.x[i]), num(m.y[j]), num(t.xx), num(t.yy), num(t.xy),
+                       num(von_mises(t, nu)));
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+// crack.gp: K_I and K_II against crack length, top (solid) and bottom (dashed) of the cycle, the initial and the
+// last state, the records between in thin lines.
+std::string crack_plot_script(const Scene& scene, const RunResult& r) {
+  std::vector<double> states;
+  for (const SifSet& set : r.sifs)
+    if (states.empty() || states.back() != set.cycles) states.push_back(set.cycles);
+  const std::string hi = scene.tangential ? "top" : "loaded", lo = scene.tangential ? "bottom" : "loaded";
+  std::string s = fmt::format(R"(# Stress intensity factors. Re-run with: gnuplot crack.gp
+set datafile separator ','
+set xlabel 'crack length l (µm)'
+set grid
+set key outside right top
+set title "{}: crack at x = {:.4g} mm ({}), normal to the surface" noenhanced
+)", scene.name, r.crack_x * 1e3, scene.crack->at == "x" ? "given" : scene.crack->at);
+  for (const char* mode : {"K_I", "K_II"}) {
+    const int col = std::string(mode) == "K_I" ? 4 : 6;
+    std::string plot = "plot ";
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      const bool shown = k == 0 || k + 1 == states.size();
+      const double t = states.size() > 1 ? double(k) / double(states.size() - 1) : 0.0;
+      auto line = [&](const std::string& phase, const char* dash) {
+        return fmt::format("'sif.csv' skip 1 using ($1 == {} && strcol(2) eq '{}' ? $3*1e6 : 1/0):(${}*1e-6) with "
+                           "linespoints pt 7 ps 0.4 lw {} {} lc rgb '{}' {}, ",
+                           num(states[k]), phase, col, shown ? 2.0 : 0.7, dash, ramp(t),
+                           shown ? fmt::format("title '{}, {}'", r.wear ? cycles_label(states[k]) : "initial", phase)
+                                 : std::string("notitle"));
+      };
+      plot += line(hi, "");
+      if (lo != hi) plot += line(lo, "dt 2");
+    }
+    plot.resize(plot.size() - 2);
+    s += fmt::format("set ylabel '{} (MPa√m)'\n", mode);
+    s += svg_and_png(std::string("sif_") + (col == 4 ? "I" : "II"), plot + "\n");
+  }
+  return s;
+}
+
+// stress.gp: von Mises and σxx maps under the contact at the first phase.
+std::string stress_plot_script(const Scene& scene, const StressMap& m) {
+  std::string s = fmt::format(R"(# Stress under the surface. Re-run with: gnuplot stress.gp
+set view map
+set pm3d map interpolate 0,0
+set palette rgbformulae 33,13,10
+set xlabel 'x (mm)'
+set ylabel 'depth y (mm)'
+set yrange [{}:0]
+set xrange [{}:{}]
+set size ratio -1
+unset key
+)", m.y.back() * 1e3, m.x.front() * 1e3, m.x.back() * 1e3);
+  s += fmt::format("set title \"{}: von Mises stress at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
+  s += svg_and_png("stress_von_mises", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($6*1e-6) with pm3d\n");
+  s += fmt::format("set title \"{}: σxx at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
+  s += svg_and_png("stress_sxx", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d\n");
+  return s;
+}
+
 // wear.gp: the worn profile and the pressure as they evolve (with the asymptote dashed), the stick zone and the
 // worn area against cycles.
 std::string wear_plot_script(const Scene& scene, const NormalResult& n, const WearStage& w) {
@@ -413,6 +513,26 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
         if (w.records.front().stick_zone) plots.insert(plots.end(), {"wear_stick_zone.svg", "wear_stick_zone.png"});
         plots.insert(plots.end(), {"wear_area.svg", "wear_area.png"});
       }
+    }
+  }
+  if (!result.sifs.empty()) {
+    out.write("sif.csv", sif_csv(result));
+    tables.push_back("sif.csv");
+    if (scene.plots) {
+      out.write("crack.gp", crack_plot_script(scene, result));
+      if (run_gnuplot(out.path(""), "crack.gp"))
+        plots.insert(plots.end(), {"sif_I.svg", "sif_I.png", "sif_II.svg", "sif_II.png"});
+    }
+  }
+  if (!result.stress_maps.empty()) {
+    out.write("stress.csv", stress_csv(result, scene.specimen.nu));
+    out.write("surface_stress.csv", surface_stress_csv(result));
+    tables.insert(tables.end(), {"stress.csv", "surface_stress.csv"});
+    if (scene.plots) {
+      out.write("stress_map.dat", stress_map_dat(result.stress_maps.front(), scene.specimen.nu));
+      out.write("stress.gp", stress_plot_script(scene, result.stress_maps.front()));
+      if (run_gnuplot(out.path(""), "stress.gp"))
+        plots.insert(plots.end(), {"stress_von_mises.svg", "stress_von_mises.png", "stress_sxx.svg", "stress_sxx.png"});
     }
   }
   summary["plots"] = plots;

@@ -503,9 +503,63 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         s.tangential_implied = true;
       }
     }
-    r.finish({
-              {"stress", "the subsurface-stress issue adds it"},
-              {"crack", "the crack issue adds it"}});
+    if (const json* st = r.object("stress", false)) {
+      Reader rs(*st, "effects.stress", problems);
+      StressEffect effect;
+      const Bound points{[](double v) { return v >= 3 && v <= 2001 && v == std::floor(v); }, "a whole number from 3 to 2001"};
+      effect.nx = int(rs.number("nx", 161.0, points).value_or(161.0));
+      effect.ny = int(rs.number("ny", 81.0, points).value_or(81.0));
+      effect.depth = rs.number("depth", 0.0, {[](double v) { return v >= 0.0; }, "a depth >= 0 m (0: the contact half-width)"})
+                         .value_or(0.0);
+      rs.finish();
+      s.stress = effect;
+    }
+    if (const json* c = r.object("crack", false)) {
+      Reader rc(*c, "effects.crack", problems);
+      CrackEffect effect;
+      if (const json* at = rc.find("at")) {
+        if (at->is_number() && std::isfinite(at->get<double>())) {
+          effect.at = "x";
+          effect.x = at->get<double>();
+        } else if (at->is_string() && (*at == "trailing_edge" || *at == "leading_edge")) {
+          effect.at = at->get<std::string>();
+        } else {
+          rc.problem("effects.crack.at", fmt::format("{} is not allowed; give \"trailing_edge\", \"leading_edge\" or "
+                                                     "a position x (m)", describe(*at)));
+        }
+      }
+      effect.angle_deg = rc.number("angle_deg", 90.0, {[](double v) { return v > 0.0 && v < 180.0; }, "an angle in (0, 180) degrees"})
+                             .value_or(90.0);
+      if (effect.angle_deg != 90.0)
+        rc.problem("effects.crack.angle_deg", fmt::format("{}: inclined cracks are not supported yet; use 90 (normal to the "
+                                                          "surface)", effect.angle_deg));
+      if (const json* fr = rc.find("face_friction")) {
+        if (!fr->is_number() || fr->get<double>() != 0.0)
+          rc.problem("effects.crack.face_friction", fmt::format("{}: crack-face friction is not supported yet; give 0 "
+                                                                "(frictionless faces)", describe(*fr)));
+      }
+      effect.quadrature = int(rc.number("quadrature", 60.0, {[](double v) { return v >= 2 && v <= 1000 && v == std::floor(v); },
+                                                            "a whole number of points from 2 to 1000"})
+                                  .value_or(60.0));
+      const json* lengths = rc.find("lengths");
+      if (!lengths) {
+        rc.problem("effects.crack.lengths", "missing; give an array of crack depths > 0 (m)");
+      } else if (!lengths->is_array() || lengths->empty()) {
+        rc.problem("effects.crack.lengths", fmt::format("{} is not a non-empty array of crack depths (m)", describe(*lengths)));
+      } else {
+        for (std::size_t k = 0; k < lengths->size(); ++k) {
+          const json& l = (*lengths)[k];
+          if (!l.is_number() || !(l.get<double>() > 0.0) || !std::isfinite(l.get<double>())) {
+            rc.problem(fmt::format("effects.crack.lengths[{}]", k), fmt::format("{} is not a crack depth > 0 (m)", describe(l)));
+            break;
+          }
+          effect.lengths.push_back(l.get<double>());
+        }
+      }
+      rc.finish();
+      s.crack = effect;
+    }
+    r.finish();
   }
 
   if (const json* o = top.object("output", false)) {
@@ -607,6 +661,15 @@ json Scene::to_json() const {
   j["effects"] = json::object();
   if (tangential)
     j["effects"]["tangential"] = {{"route", to_string(tangential->route)}, {"increments", tangential->increments}};
+  if (stress) j["effects"]["stress"] = {{"nx", stress->nx}, {"ny", stress->ny}, {"depth", stress->depth}};
+  if (crack) {
+    j["effects"]["crack"] = {{"angle_deg", crack->angle_deg}, {"lengths", crack->lengths},
+                             {"quadrature", crack->quadrature}, {"face_friction", 0.0}};
+    if (crack->at == "x")
+      j["effects"]["crack"]["at"] = crack->x;
+    else
+      j["effects"]["crack"]["at"] = crack->at;
+  }
   if (wear) {
     json w = {{"law", wear->law},
               {wear->law == "archard" ? "k" : "alpha", wear->coefficient},

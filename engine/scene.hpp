@@ -13,6 +13,7 @@
 #include "contact/elastic_pair.hpp"
 #include "contact/error.hpp"
 #include "contact/profile.hpp"
+#include "engine/crack_stage.hpp"
 
 namespace fretwear {
 
@@ -61,6 +62,8 @@ struct Scene {
   std::optional<TangentialEffect> tangential;
   bool tangential_implied = false;       // added because wear needs the cycle
   std::optional<WearEffect> wear;
+  std::optional<StressEffect> stress;
+  std::optional<CrackEffect> crack;
 
   // Q at the top of the cycle (N/m), from the amplitude or the ratio; 0 without a tangential load.
   double Q_max() const;

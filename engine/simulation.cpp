@@ -167,6 +167,21 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   return stage;
 }
 
+namespace {
+
+// The loads at the top and the bottom of the cycle (just "loaded" without one): in phase, the bottom is the top
+// reversed. In gross slip the whole contact slides: q = ±f p.
+std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p, const std::vector<double>* q_top) {
+  if (!scene.tangential) return {{"loaded", p, {}, 0.0}};
+  std::vector<double> q(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) q[i] = q_top && !q_top->empty() ? (*q_top)[i] : *scene.friction * p[i];
+  std::vector<double> minus(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) minus[i] = -q[i];
+  return {{"top", p, q, scene.bulk_stress}, {"bottom", p, minus, -scene.bulk_stress}};
+}
+
+}  // namespace
+
 RunResult Simulation::run() const {
   const auto t0 = std::chrono::steady_clock::now();
   RunResult result;
@@ -182,6 +197,37 @@ RunResult Simulation::run() const {
     const auto t2 = std::chrono::steady_clock::now();
     result.wear = std::make_shared<WearStage>(run_wear(scene_, model, result.normal));
     result.timings.wear = seconds_since(t2);
+  }
+  if (scene_.stress || scene_.crack) {
+    const NormalResult& n = result.normal;
+    const std::vector<double>* q_top = result.cycle ? &result.cycle->result.q_top : nullptr;
+    const std::vector<Phase> initial = cycle_phases(scene_, n.state.p, q_top);
+    if (scene_.stress) {
+      const auto t3 = std::chrono::steady_clock::now();
+      const double xl = n.zones.front().left.x, xr = n.zones.back().right.x, half = 0.5 * (xr - xl);
+      const double depth = scene_.stress->depth > 0.0 ? scene_.stress->depth : half;
+      const auto& last = result.wear ? result.wear->records.back() : WearRecord{};
+      const std::vector<Phase> phases =
+          result.wear ? cycle_phases(scene_, last.p, &last.q) : initial;  // the final state when wearing
+      result.stress_maps = stress_maps(model.grid, phases, xl - 0.5 * half, xr + 0.5 * half, depth, *scene_.stress);
+      result.timings.stress = seconds_since(t3);
+    }
+    if (scene_.crack) {
+      const auto t4 = std::chrono::steady_clock::now();
+      const CrackEffect& c = *scene_.crack;
+      result.crack_x = c.at == "trailing_edge" ? n.zones.front().left.x
+                       : c.at == "leading_edge" ? n.zones.back().right.x
+                                                : c.x;
+      if (result.wear) {
+        for (const WearRecord& rec : result.wear->records) {
+          auto sets = crack_sifs(model.grid, cycle_phases(scene_, rec.p, &rec.q), result.crack_x, c, rec.cycles);
+          result.sifs.insert(result.sifs.end(), sets.begin(), sets.end());
+        }
+      } else {
+        result.sifs = crack_sifs(model.grid, initial, result.crack_x, c, 0.0);
+      }
+      result.timings.crack = seconds_since(t4);
+    }
   }
   result.timings.total = seconds_since(t0);
   return result;
@@ -261,6 +307,56 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
       {"timings", timings},
   };
   if (result.cycle) summary["cycle"] = cycle;
+  if (!result.stress_maps.empty()) {
+    summary["effects_run"].push_back("stress");
+    summary["timings"]["stress"] = *result.timings.stress;
+    json phases = json::object();
+    for (const StressMap& m : result.stress_maps) {
+      double vm = 0.0, vm_x = 0.0, vm_y = 0.0;
+      for (std::size_t j = 0; j < m.y.size(); ++j)
+        for (std::size_t i = 0; i < m.x.size(); ++i) {
+          const double v = von_mises(m.sigma[j * m.x.size() + i], scene.specimen.nu);
+          if (v > vm) vm = v, vm_x = m.x[i], vm_y = m.y[j];
+        }
+      phases[m.phase] = {{"surface_sxx_trailing_peak", m.trailing_peak},
+                         {"surface_sxx_trailing_peak_x", m.trailing_peak_x},
+                         {"von_mises_max", vm},
+                         {"von_mises_max_at", {vm_x, vm_y}}};
+    }
+    summary["stress"] = {{"phases", phases},
+                         {"cycles", result.wear ? result.wear->records.back().cycles : 0.0},
+                         {"window", {result.stress_maps.front().x.front(), result.stress_maps.front().x.back()}},
+                         {"depth", result.stress_maps.front().y.back()}};
+  }
+  if (!result.sifs.empty()) {
+    summary["effects_run"].push_back("crack");
+    summary["timings"]["crack"] = *result.timings.crack;
+    const double last_cycles = result.sifs.back().cycles;
+    auto column = [&](const std::string& phase, auto member) {
+      json v = json::array();
+      for (const SifSet& set : result.sifs)
+        if (set.cycles == last_cycles && set.phase == phase)
+          for (const CrackSif& k : set.result.sifs) v.push_back(member(k));
+      return v;
+    };
+    const std::string hi = scene.tangential ? "top" : "loaded", lo = scene.tangential ? "bottom" : "loaded";
+    const CrackEffect& c = *scene.crack;
+    summary["crack"] = {
+        {"at", c.at == "x" ? json(c.x) : json(c.at)},
+        {"x", result.crack_x},
+        {"angle_deg", c.angle_deg},
+        {"quadrature", c.quadrature},
+        {"cycles", last_cycles},
+        {"lengths", c.lengths},
+        {"K_I_max", column(hi, [](const CrackSif& k) { return k.K_I; })},
+        {"K_I_min", column(lo, [](const CrackSif& k) { return k.K_I; })},
+        {"K_II_max", column(hi, [](const CrackSif& k) { return k.K_II; })},
+        {"K_II_min", column(lo, [](const CrackSif& k) { return k.K_II; })},
+        {"K_I_open_max", column(hi, [](const CrackSif& k) { return k.K_I_open; })},
+        {"K_I_open_min", column(lo, [](const CrackSif& k) { return k.K_I_open; })},
+        {"closed_max", column(hi, [](const CrackSif& k) { return k.closed; })},
+        {"closed_min", column(lo, [](const CrackSif& k) { return k.closed; })}};
+  }
   if (scene.tangential_implied) summary["effects_implied"] = {{"tangential", "needed by wear"}};
   if (result.wear) {
     const WearStage& w = *result.wear;

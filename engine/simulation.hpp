@@ -17,6 +17,7 @@
 #include "contact/profile.hpp"
 #include "contact/tangential_solver.hpp"
 #include "contact/window.hpp"
+#include "engine/crack_stage.hpp"
 #include "engine/scene.hpp"
 
 namespace fretwear {
@@ -50,6 +51,7 @@ struct Timings {
   double total = 0.0, normal = 0.0;   // wall seconds
   std::optional<double> tangential;   // present when the stage ran
   std::optional<double> wear;
+  std::optional<double> stress, crack;
 };
 
 struct WearStage;
@@ -65,6 +67,9 @@ struct RunResult {
   NormalResult normal;
   std::optional<CycleStage> cycle;
   std::shared_ptr<const WearStage> wear;  // engine/wear_stage.hpp
+  std::vector<StressMap> stress_maps;      // at the top and bottom (initial state, and the last record when wearing)
+  std::vector<SifSet> sifs;                // at the top and bottom of every state (initial, then each record)
+  double crack_x = 0.0;                    // where the crack is (m)
   Timings timings;
 };
 

@@ -182,6 +182,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     rec.w = state;
     rec.p = r.p;
     rec.s = r.s;
+    rec.q.resize(n);  // the shear at the top of the cycle, q = f (p − p*) (analogy route)
+    for (int i = 0; i < n; ++i) rec.q[i] = *scene.friction * (r.p[i] - contact.corrective_pressure()[i]);
     for (int i = 0; i < n; ++i) {
       rec.worn_area += state[i] * h;
       rec.max_depth = std::max(rec.max_depth, state[i]);

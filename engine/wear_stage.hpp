@@ -39,6 +39,7 @@ struct WearRecord {
   Interval contact{0.0, 0.0};
   double fraction = 0.0;  // worn area over the asymptote's
   std::vector<double> w, p, s;  // per cell
+  std::vector<double> q;        // shear traction at the top of the cycle per cell (Pa); the bottom is −q
 };
 
 struct WearStage {

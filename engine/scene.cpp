@@ -136,7 +136,8 @@ class Reader {
 
   // Reports keys not read, and keys of capabilities that are not built yet.
   void finish(const std::vector<std::pair<std::string, std::string>>& not_yet = {}) {
-    for (const auto& [key, v] : obj_.items()) {
+    for (const auto& item : obj_.items()) {
+      const std::string& key = item.key();  // not a structured binding: clang 14 cannot capture those
       auto ny = std::find_if(not_yet.begin(), not_yet.end(), [&](const auto& p) { return p.first == key; });
       if (ny != not_yet.end()) {
         problem(at(key), "not supported yet (" + ny->second + ")");

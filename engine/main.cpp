@@ -1,5 +1,17 @@
-// fretwear: the command line. Exit status 0 done, 2 invalid scene (nothing written), 3 a solver did not converge.
+// fretwear: the command line. Exit status 0 done, 2 invalid scene (nothing written), 3 a solver did not converge,
+// 130 / 143 a wear run stopped by SIGINT (Ctrl-C) / SIGTERM (what was recorded is written, and a checkpoint).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <optional>
+#include <thread>
+#include <utility>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -9,6 +21,7 @@
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"
 #include "engine/version.hpp"
+#include "engine/wear_stage.hpp"
 
 namespace {
 
@@ -16,15 +29,111 @@ using namespace fretwear;
 
 constexpr int kExitInvalid = 2;
 constexpr int kExitNoConvergence = 3;
+constexpr int kExitSignal = 128;  // + the signal's number: 130 SIGINT, 143 SIGTERM
 
-int run(const std::string& path, bool quiet, bool verbose) {
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_signal(int sig) { g_signal = sig; }
+
+// SIGINT and SIGTERM ask the wear run to stop at its next step boundary; a second one ends the program at once
+// (SA_RESETHAND: the default action), the last checkpoint kept.
+void catch_stop_signals() {
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+std::string clock_time(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+// One line on stderr, rewritten in place at most four times a second, only on a terminal.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled) : enabled_(enabled) {}
+  ~ProgressLine() { finish(); }
+  bool enabled() const { return enabled_; }
+
+  void update(const WearProgress& p) {
+    const auto now = clock::now();
+    if (!first_) first_ = std::pair{now, p.cycles};
+    if (shown_ && now - last_ < std::chrono::milliseconds(250) && p.cycles < p.total) return;
+    last_ = now;
+    shown_ = true;
+    const double elapsed = std::chrono::duration<double>(now - first_->first).count();
+    const double done = p.cycles - first_->second;  // in this process (a resumed run started part way)
+    std::string left = "--";
+    if (done > 0.0 && elapsed > 0.0) left = clock_time((p.total - p.cycles) * elapsed / done);
+    std::cerr << fmt::format("\r\033[Kwear: {:.0f} / {:.0f} cycles, ΔN {:.3g}, {:.1f}% of the limit, {} elapsed, ~{} left",
+                             p.cycles, p.total, p.dN, 100.0 * p.fraction, clock_time(elapsed), left)
+              << std::flush;
+  }
+  void finish() {
+    if (shown_) std::cerr << "\n" << std::flush;
+    shown_ = false;
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  bool enabled_, shown_ = false;
+  clock::time_point last_{};
+  std::optional<std::pair<clock::time_point, double>> first_;
+};
+
+int run(const std::string& path, bool quiet, bool verbose, bool resume, double checkpoint_every) {
   const Scene scene = load_scene(path);
+  WearControl control;
+  if (scene.wear) {
+    control.checkpoint = checkpoint_path(scene);
+    control.scene_hash = scene_hash(scene);
+    control.checkpoint_interval = checkpoint_every;
+    if (resume) {
+      control.resume = read_checkpoint(control.checkpoint, scene);  // refuses another scene's, writes nothing
+      if (!quiet)
+        std::cerr << (control.resume
+                          ? fmt::format("fretwear: {}: resuming at cycle {:.0f} of {:.0f} from {}\n", scene.name,
+                                        control.resume->at("cycles").get<double>(),
+                                        control.resume->at("cycles_total").get<double>(), control.checkpoint.string())
+                          : fmt::format("fretwear: {}: no checkpoint ({}): running from the start\n", scene.name,
+                                        control.checkpoint.string()));
+    }
+  } else if (resume && !quiet) {
+    std::cerr << fmt::format("fretwear: {}: the scene does not wear, nothing to resume: running it\n", scene.name);
+  }
   OutputFolder out(scene.output_dir);
   if (!quiet) std::cerr << fmt::format("fretwear: {}: normal contact on {} cells\n", scene.name, scene.cells);
+  ProgressLine progress(!quiet && ::isatty(STDERR_FILENO));
+  if (scene.wear) {
+    // FRETWEAR_STEP_PAUSE_MS (tests only): a pause at each step boundary, so that a test's signal lands mid-run.
+    const char* pause = std::getenv("FRETWEAR_STEP_PAUSE_MS");
+    const int pause_ms = pause ? std::atoi(pause) : 0;
+    control.stop_requested = [pause_ms] {
+      if (pause_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(pause_ms));
+      return g_signal != 0;
+    };
+    if (progress.enabled()) control.progress = [&progress](const WearProgress& p) { progress.update(p); };
+    catch_stop_signals();
+  }
   try {
-    const RunResult result = Simulation(scene).run();
+    const RunResult result = Simulation(scene).run(&control);
+    progress.finish();
     const auto summary = write_results(scene, result, out);
     out.commit();
+    if (result.wear && result.wear->interrupted) {
+      std::cerr << fmt::format("fretwear: {}: stopped by signal {} at cycle {:.0f} of {:.0f} (recorded up to cycle "
+                               "{:.0f}); results so far in {}/; continue with: fretwear run --resume {}\n",
+                               scene.name, int(g_signal), result.wear->cycles_reached, scene.wear->cycles,
+                               result.wear->records.back().cycles, scene.output_dir.string(), path);
+      return kExitSignal + int(g_signal);
+    }
+    if (scene.wear) {  // done: the checkpoint has served
+      std::error_code ec;
+      std::filesystem::remove(control.checkpoint, ec);
+    }
     if (!quiet) {
       const auto& c = summary["contact"];
       std::cout << fmt::format("{}: contact [{:.6e}, {:.6e}] m in {} zone(s), p_max {:.6e} Pa ({})\n", scene.name,
@@ -50,6 +159,7 @@ int run(const std::string& path, bool quiet, bool verbose) {
       std::cout << "results in " << scene.output_dir.string() << "/\n";
     }
   } catch (const ConvergenceError& e) {
+    progress.finish();
     out.write_json("summary.json", {{"scene", scene.name}, {"version", kVersion}, {"status", "not_converged"},
                                     {"message", e.what()}});
     out.commit();
@@ -74,7 +184,8 @@ int convergence(const std::string& path, int from, int to, bool quiet) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fretwear: fretting in plane elastic contacts, from one JSON scene.\n"
-               "Exit status: 0 done, 2 invalid scene (nothing written), 3 a solver did not converge."};
+               "Exit status: 0 done, 2 invalid scene (nothing written), 3 a solver did not converge, 130 / 143 a wear "
+               "run stopped by Ctrl-C / SIGTERM (what was recorded is written; continue with run --resume)."};
   app.set_version_flag("--version", std::string("fretwear ") + kVersion);
   app.require_subcommand(1);
   bool quiet = false, verbose = false;
@@ -84,6 +195,14 @@ int main(int argc, char** argv) {
   std::string scene_path;
   auto* run_cmd = app.add_subcommand("run", "run a scene and write its results into output.dir");
   run_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
+  bool resume = false;
+  double checkpoint_every = 60.0;
+  run_cmd->add_flag("--resume", resume,
+                    "continue a stopped or killed wear run from its checkpoint (<output.dir>.checkpoint), if there "
+                    "is one for this scene; else run from the start");
+  run_cmd->add_option("--checkpoint-every", checkpoint_every,
+                      "seconds between wear checkpoints between records (default 60; 0: after every step)")
+      ->check(CLI::Range(0.0, 1e9));
   auto* validate_cmd = app.add_subcommand("validate", "check a scene and report every problem; writes nothing");
   validate_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
   app.add_subcommand("defaults", "print a scene with every default filled in");
@@ -104,7 +223,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitInvalid;
   }
   try {
-    if (*run_cmd) return run(scene_path, quiet, verbose);
+    if (*run_cmd) return run(scene_path, quiet, verbose, resume, checkpoint_every);
     if (*validate_cmd) {
       const Scene scene = load_scene(scene_path);
       if (!quiet) std::cout << scene_path << ": valid scene \"" << scene.name << "\"\n";

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <csignal>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -16,9 +18,21 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
+  if (!dir_.has_filename()) dir_ = dir_.parent_path();  // "output/x/" names the folder x
   staging_ = dir_;
   staging_ += fmt::format(".partial-{}", ::getpid());
   std::error_code ec;
+  // Staging folders of runs that were killed (their process is gone) are removed.
+  const fs::path parent = dir_.parent_path().empty() ? fs::path(".") : dir_.parent_path();
+  const std::string prefix = dir_.filename().string() + ".partial-";
+  for (const auto& e : fs::directory_iterator(parent, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string pid = name.substr(prefix.size());
+    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    if (::kill(pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) fs::remove_all(e.path(), ec);
+  }
+  ec.clear();
   fs::remove_all(staging_, ec);
   fs::create_directories(staging_, ec);
   if (ec || ::access(staging_.c_str(), W_OK) != 0) {

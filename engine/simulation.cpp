@@ -182,7 +182,7 @@ std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p
 
 }  // namespace
 
-RunResult Simulation::run() const {
+RunResult Simulation::run(const WearControl* control) const {
   const auto t0 = std::chrono::steady_clock::now();
   RunResult result;
   const Model model = make_model(scene_);
@@ -195,10 +195,10 @@ RunResult Simulation::run() const {
   }
   if (scene_.wear) {
     const auto t2 = std::chrono::steady_clock::now();
-    result.wear = std::make_shared<WearStage>(run_wear(scene_, model, result.normal));
+    result.wear = std::make_shared<WearStage>(run_wear(scene_, model, result.normal, control ? *control : WearControl{}));
     result.timings.wear = seconds_since(t2);
   }
-  if (scene_.stress || scene_.crack) {
+  if ((scene_.stress || scene_.crack) && !(result.wear && result.wear->interrupted)) {
     const NormalResult& n = result.normal;
     const std::vector<double>* q_top = result.cycle ? &result.cycle->result.q_top : nullptr;
     const std::vector<Phase> initial = cycle_phases(scene_, n.state.p, q_top);
@@ -290,7 +290,7 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
   json summary = {
       {"scene", scene.name},
       {"version", kVersion},
-      {"status", "completed"},
+      {"status", result.wear && result.wear->interrupted ? "interrupted" : "completed"},
       {"effects_run", effects_run},
       {"materials", {{"A", pair.A()}, {"E_star", pair.E_star()}, {"alpha", pair.alpha()}, {"beta", pair.beta()}}},
       {"grid",
@@ -392,6 +392,10 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
           {"max_depth", w.asymptote.max_depth},
           {"x_max_depth", w.asymptote.x_max_depth},
           {"extent", {w.asymptote.extent.first, w.asymptote.extent.second}}}}};
+    // Where the run got to (the last record is wear.cycles); an interrupted run stops short of cycles_target.
+    summary["wear"]["cycles_target"] = e.cycles;
+    summary["wear"]["cycles_reached"] = w.cycles_reached;
+    if (w.resumed_from) summary["wear"]["resumed_from"] = *w.resumed_from;
     if (e.stepper == "explicit") {  // the cap on ΔN below the stability limit, and the longest step taken (cycles)
       summary["wear"]["explicit_step_cap"] = w.explicit_step_cap;
       summary["wear"]["explicit_max_step"] = w.explicit_max_step;

@@ -55,6 +55,7 @@ struct Timings {
 };
 
 struct WearStage;
+struct WearControl;  // engine/wear_stage.hpp
 
 // What the cycle stage computed, with the route that ran.
 struct CycleStage {
@@ -97,7 +98,9 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
 class Simulation {
  public:
   explicit Simulation(Scene scene) : scene_(std::move(scene)) {}
-  RunResult run() const;
+  // control (optional) steers the wear stage: progress, checkpoints, resume, stop. A wear stage stopped on request
+  // (WearStage::interrupted) ends the run there: stress and crack, which use the last record, are not computed.
+  RunResult run(const WearControl* control = nullptr) const;
   const Scene& scene() const { return scene_; }
 
  private:

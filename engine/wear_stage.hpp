@@ -2,10 +2,15 @@
 // computed directly, and the run driven through Boost.Odeint with records.
 #pragma once
 
+#include <cstdint>
+#include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "contact/normal_solver.hpp"
 #include "engine/scene.hpp"
@@ -52,7 +57,43 @@ struct WearStage {
   double explicit_max_step = 0.0;   // stepper "explicit": the longest accepted step (cycles), ≤ the cap
   int steps = 0, rejected_steps = 0, implicit_solves = 0, responses = 0;
   double mean_iterations_cycle = 0.0, mean_iterations_implicit = 0.0;  // CG iterations per warm-started solve
+  bool interrupted = false;               // stopped on request before the last cycle (records hold what was done)
+  double cycles_reached = 0.0;            // where the run stopped (the last cycle when it completed)
+  std::optional<double> resumed_from;     // the cycle of the checkpoint the run continued from
 };
+
+// Steering a wear run from outside it: progress, checkpoints and a stop request. wear/ knows none of this; the
+// engine's driver calls these at step boundaries (after every accepted step and after every record).
+struct WearProgress {
+  double cycles = 0.0, total = 0.0;  // done and asked for
+  double dN = 0.0;                   // the next step's size (cycles)
+  double fraction = 0.0;             // worn area over the asymptote's
+  int steps = 0;                     // accepted steps so far
+};
+
+struct WearControl {
+  std::function<void(const WearProgress&)> progress;  // may be empty
+  std::function<bool()> stop_requested;               // true: stop at this boundary (a checkpoint is written)
+  std::filesystem::path checkpoint;                   // where checkpoints go; empty: none
+  double checkpoint_interval = 60.0;                  // seconds between checkpoints between records (0: every step)
+  std::uint64_t scene_hash = 0;                       // scene_hash(scene), stored in the checkpoint
+  std::optional<nlohmann::json> resume;               // a checkpoint read by read_checkpoint(), to continue from
+};
+
+// Checkpoints (docs/SCENES.md, "Long runs"): everything a wear run carries from one step to the next — the wear
+// depth, the cycle, the next ΔN, the record index, the records so far, the stepper's and the contact solver's warm
+// starts and counts — so that a resumed run takes exactly the steps the uninterrupted one takes. CBOR (RFC 8949),
+// vectors as raw little-endian doubles; written to a temporary file, fsync'ed and renamed over the previous one.
+inline constexpr int kCheckpointFormat = 1;
+// <output.dir>.checkpoint: beside the output folder, which is replaced only when a run completes.
+std::filesystem::path checkpoint_path(const Scene& scene);
+// FNV-1a (64 bit) of the resolved scene's JSON: two scenes that resolve alike share a checkpoint.
+std::uint64_t scene_hash(const Scene& scene);
+// The checkpoint at `path` for this scene, or nothing when there is none. Throws InputError when the file is not a
+// fretwear checkpoint, has another format or fretwear version, or belongs to another scene.
+std::optional<nlohmann::json> read_checkpoint(const std::filesystem::path& path, const Scene& scene);
+// Writes j atomically (temporary file, fsync, rename, fsync of the folder).
+void write_checkpoint(const std::filesystem::path& path, const nlohmann::json& j);
 
 // The steady-cycle slip and stick zone on a worn profile, by the analogy route (similar bodies, constant P).
 class AnalogyContactResponse : public wear::ContactResponse {
@@ -64,6 +105,9 @@ class AnalogyContactResponse : public wear::ContactResponse {
   void implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
   // The last normal and corrective pressures (for records).
   const std::vector<double>& corrective_pressure() const { return corrective_.p; }
+  // The warm starts of the solves and the counts below, for checkpoints.
+  nlohmann::json save() const;
+  void restore(const nlohmann::json& j);
   // Solves and their CG iterations, by kind: the cycle (normal and corrective) and the contact-implicit steps.
   long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
 
@@ -86,7 +130,9 @@ inline constexpr double kExplicitCapFraction = 0.9;
 // Runs the wear of a scene with the stepper it names (effects.wear.stepper): "implicit" (the default), "explicit"
 // (Dormand–Prince capped below the stability limit; small problems) or "cycle_by_cycle" (every cycle worn, the
 // reference on short runs; throws UnsupportedError when one cycle exceeds the stability limit). The normal solution
-// and the first cycle have been computed on the same model.
-WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal);
+// and the first cycle have been computed on the same model. `control` reports progress, writes checkpoints, continues
+// from one and stops on request (then WearStage::interrupted).
+WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal,
+                   const WearControl& control = {});
 
 }  // namespace fretwear

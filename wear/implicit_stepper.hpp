@@ -30,6 +30,14 @@ struct ImplicitStepperStats {
   double last_error = 0.0;  // err of the last try, ≤ 1 when accepted
 };
 
+// What the stepper carries from one accepted step to the next and what the next step's result depends on: the warm
+// starts of its contact-implicit solves (they move the answer within the solver's tolerance) and its counts. Saved
+// at a step boundary and restored, the stepper repeats the steps it would have taken to the last bit (a resumed run).
+struct ImplicitStepperState {
+  ImplicitStepperStats stats;
+  std::vector<double> p_full, p_half;
+};
+
 class ImplicitWearStepper {
  public:
   using state_type = std::vector<double>;
@@ -63,6 +71,14 @@ class ImplicitWearStepper {
   }
 
   const ImplicitStepperStats& stats() const { return stats_; }
+  // The state at a step boundary (after an accepted step, or before the first), and its restoration.
+  ImplicitStepperState state() const { return {stats_, p_full_, p_half_}; }
+  void restore(const ImplicitStepperState& s) {
+    stats_ = s.stats;
+    p_full_ = s.p_full;
+    p_half_ = s.p_half;
+    response_valid_ = false;
+  }
   // The response at the last accepted state (valid after a step), to spare the observer a solve.
   const CycleResponse* last_response() const { return response_valid_ ? &response_ : nullptr; }
 

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
@@ -56,6 +57,17 @@ class WearRateSystem {
 
   long evaluations() const { return evaluations_; }  // responses solved (two contact solves each)
   const CycleResponse& last_response() const { return response_; }
+  // The rate of the last evaluation, c p s, computed as operator() does (bit for bit).
+  std::vector<double> last_rate() const {
+    std::vector<double> r(response_.p.size());
+    for (std::size_t i = 0; i < r.size(); ++i) r[i] = c_ * response_.p[i] * response_.s[i];
+    return r;
+  }
+  // For a resumed run: the count and the last response as they were at a step boundary.
+  void restore(long evaluations, CycleResponse last) {
+    evaluations_ = evaluations;
+    response_ = std::move(last);
+  }
 
  private:
   ContactResponse* contact_;
@@ -106,6 +118,15 @@ class ExplicitWearStepper {
 
   double cap() const { return cap_; }
   const ExplicitStepperStats& stats() const { return stats_; }
+  // For a resumed run: the counts, and the derivative at the current state that Dormand–Prince carries from one
+  // step to the next (first same as last; WearRateSystem::last_rate() after an accepted step; null before the first
+  // step, when odeint evaluates it). Sized first, so that odeint's next try_step keeps it.
+  void restore(const ExplicitStepperStats& stats, const state_type& w, const std::vector<double>* dwdN) {
+    stats_ = stats;
+    if (!dwdN) return;
+    controlled_.adjust_size(w);
+    controlled_.initialize(*dwdN);
+  }
 
  private:
   controlled_type controlled_;

@@ -49,7 +49,7 @@ struct CycleResult {
   std::vector<double> energy_density;  // frictional energy per cycle per unit area (J/m²)
   double dissipated_energy = 0.0;      // per cycle per unit length (J/m)
   double slip_max = 0.0;               // largest slip range, at the contact's edges to sub-cell accuracy (m)
-  std::vector<SolveSummary> solves;    // the corrective normal solves
+  std::vector<SolveSummary> solves;    // the corrective normal solves (incremental route: its increments)
   std::string message;                 // why a regime has no fields
 };
 

@@ -1,0 +1,113 @@
+// Cyclic partial slip by load increments: the incremental route of ARCHITECTURE.md, here for similar bodies
+// (Dundurs β = 0, so the pressure p of the normal solve under the constant P is fixed) under force control, with the
+// tangential load Q(t) cycling 0 → +Q → −Q → +Q … and a bulk tension in phase, ε(t) = ε Q(t)/Q.
+//
+// For similar bodies a shear traction q on the cells changes the relative tangential surface displacement by K q,
+// with the same influence matrix K and compliance A as the normal problem (HalfPlaneKernel; PHYSICS.md,
+// "Conventions": at β = 0 the normal and tangential problems are uncoupled). The bulk strain adds ε x (Nowell and
+// Hills 1987, as PHYSICS.md, "Bulk tension", states it: in the stick zone (1/π) ∫ q/(x − ξ) dξ = ε/A). With s = K q + ε x − (a rigid shift), stick cells keep s fixed and a slipping cell
+// moves by Δw = −Δs at |q| = f p with q Δw ≥ 0 (Coulomb). This sign reproduces Cattaneo–Mindlin and the analogy route
+// (tangential_solver.hpp): under a proportional load both solve the same discrete problem.
+//
+// One increment, from (q_prev, ε_prev) to (Q, ε): with b = K q_prev − (ε − ε_prev) x, solve the convex quadratic
+// program
+//     min ½ qᵀ K q − qᵀ b   subject to   −f p_i ≤ q_i ≤ f p_i,   h Σ q_i = Q,
+// on the contact cells (p_i > 0; q = 0 elsewhere). K is symmetric positive definite (the window as datum), so the
+// solution is unique, and its KKT conditions with multiplier λ for the load are the contact laws: with
+// Δs_i = (K (q − q_prev))_i + (ε − ε_prev) x_i − λ,
+//     −f p_i < q_i < f p_i  ⇒  Δs_i = 0   (stick: the increment is a rigid shift),
+//     q_i = +f p_i          ⇒  Δs_i ≤ 0   (forward slip, Δw = −Δs_i ≥ 0),
+//     q_i = −f p_i          ⇒  Δs_i ≥ 0   (backward slip).
+//
+// Method: constrained conjugate gradients with two-sided bounds, after Polonsky and Keer (1999, Wear 231, §2):
+// CG on the free cells with the mean residual removed (this is λ and keeps h Σ q = Q), cells at a bound whose
+// residual points inward added to the working set with a restart, and after each step the Euclidean projection
+// onto {box, h Σ q = Q} over the working set (a uniform shift μ and a clamp; μ = 0 unless a cell hit a bound, as
+// the direction sums to zero). Preconditioner, as NormalSolver's: z = Π_W C⁻¹ Π_W g with C the 2n circulant that
+// embeds K; it falls back to plain CG if it stalls. Warm-started from the previous increment.
+//
+// Stopping criterion: the largest KKT violation relative to the increment's slip scale,
+//     r = max( max_free |Δs_i|, max_{q = +fp} max(Δs_i, 0), max_{q = −fp} max(−Δs_i, 0) ) / d,
+//     d = A |Q − Q_prev| + |ε − ε_prev| ℓ   (ℓ: the half-width of the loaded cells' span),
+// with λ the mean of Δs + λ over the free cells; the load is balanced to round-off at every iterate. Relative to d
+// the errors of the increments do not add up with their number: a cycle's slip is accurate to about r A Q.
+//
+// Cycle bookkeeping: per cell the slip w accumulates Δw (zero on the cells that stick in the increment); the slip
+// range is max w − min w over the cycle, the slip travelled Σ |Δw|, the energy density Σ q Δw (q at the end of the
+// increment, at ±f p where Δw ≠ 0, so every term is f p |Δw| ≥ 0; a bound cell whose Δw has the wrong sign by less
+// than the tolerance is counted as sticking).
+#pragma once
+
+#include <complex>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "contact/half_plane_kernel.hpp"
+#include "contact/normal_solver.hpp"
+#include "contact/tangential_solver.hpp"
+
+namespace fretwear {
+
+struct IncrementalSlipOptions {
+  int increments_per_cycle = 40;  // load steps over +Q → −Q → +Q (the first loading 0 → Q takes a quarter of
+                                  // them); a multiple of 4 and ≥ 4, so that Q = 0 and ±Q are increment ends
+  int cycles = 1;                 // steady cycles after the first loading; ≥ 1
+  double tolerance = 1e-8;        // on the residual r above; in (0, 1e-2]
+  int max_iterations = 20000;     // CG iterations per increment before giving up; ≥ 1
+  // none: plain constrained CG; symbol: Π_W C⁻¹ Π_W on the working set (see above).
+  NormalSolverOptions::Preconditioner preconditioner = NormalSolverOptions::Preconditioner::symbol;
+
+  // Empty when valid; otherwise names the field, its value and the constraint.
+  std::string validate() const;
+};
+
+// One increment's data: the traction bounds and the load step.
+struct SlipIncrement {
+  double Q = 0.0;              // tangential load at the end of the increment (N/m)
+  double Q_prev = 0.0;         // at its start (N/m)
+  double bulk_strain = 0.0;    // ε at the end of the increment
+  double bulk_strain_prev = 0.0;
+};
+
+// What one increment leaves: the traction and, per cell, the slip increment Δw (m; zero on stick cells and off
+// the contact).
+struct IncrementState {
+  std::vector<double> q;      // shear traction per cell (Pa)
+  std::vector<double> u;      // K q per cell (m), carried to the next increment
+  std::vector<double> dw;     // slip increment per cell (m)
+};
+
+struct IncrementalResult {
+  std::vector<CycleResult> cycles;  // one per steady cycle, top to top; CycleResult::solves holds its increments
+  SolveSummary worst;               // the increment with the largest residual over the whole run
+  int n_increments = 0;
+  int n_iterations = 0;             // CG iterations over every increment
+};
+
+class IncrementalSlipSolver {
+ public:
+  // The kernel must outlive the solver. Throws InputError if the options are invalid.
+  IncrementalSlipSolver(const HalfPlaneKernel& kernel, IncrementalSlipOptions options = {});
+
+  // The cycles of `load` on the normal solution `contact` (its p is fixed: β = 0, constant P). Q_max ≥ f P returns one
+  // cycle in the gross_slip regime with no fields, as the analogy route does. Throws ConvergenceError naming the
+  // cycle, the increment, Q and the residual if an increment does not converge.
+  IncrementalResult solve(const ContactState& contact, const CyclicLoad& load) const;
+
+  // One increment from `state` (q and u = K q of the previous increment, or empty for q = 0). p: the pressure per
+  // cell (Pa); f the friction coefficient. Needs Σ f p h ≥ |Q|.
+  SolveSummary solve_increment(std::span<const double> p, double f, const SlipIncrement& inc,
+                               IncrementState& state) const;
+
+  const IncrementalSlipOptions& options() const { return options_; }
+
+ private:
+  SolveSummary iterate(std::span<const double> lo, std::span<const double> hi, const SlipIncrement& inc,
+                       std::span<const double> u_prev, IncrementState& state, bool use_preconditioner) const;
+  const HalfPlaneKernel& kernel_;
+  IncrementalSlipOptions options_;
+  std::vector<std::complex<double>> inverse_spectrum_;  // C⁻¹ on the kernel's circulant, when preconditioned
+};
+
+}  // namespace fretwear

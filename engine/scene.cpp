@@ -433,14 +433,14 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         } else if (*route == "analogy") {
           effect.route = TangentialRoute::analogy;
         } else if (*route == "incremental") {
-          rt.problem("effects.tangential.route", "\"incremental\" is not supported yet; use \"auto\" or \"analogy\"");
+          effect.route = TangentialRoute::incremental;
         } else {
           rt.problem("effects.tangential.route",
                      fmt::format("\"{}\" is not a route; use \"auto\", \"analogy\" or \"incremental\"", *route));
         }
       }
-      effect.increments = int(rt.number("increments", 40.0, {[](double v) { return v >= 4 && v <= 100000 && v == std::floor(v); },
-                                                           "a whole number of increments from 4 to 100000"})
+      effect.increments = int(rt.number("increments", 40.0, {[](double v) { return v >= 4 && v <= 100000 && v == std::floor(v) && std::fmod(v, 4.0) == 0.0; },
+                                                           "a whole number of increments from 4 to 100000, a multiple of 4"})
                                   .value_or(40.0));
       rt.finish();
       s.tangential = effect;
@@ -586,7 +586,8 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
     if (std::abs(pair.beta()) > 1e-12)
       problems.push_back(fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the normal and "
-                                     "tangential problems and need the incremental route, which is not supported yet",
+                                     "tangential problems, which no route models yet (the incremental route takes similar "
+                                     "bodies, beta = 0): not supported yet",
                                      pair.beta()));
   } else {
     if (s.Q_amplitude || s.Q_ratio)

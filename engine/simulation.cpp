@@ -8,6 +8,7 @@
 
 #include "contact/closed_form.hpp"
 #include "contact/half_plane_kernel.hpp"
+#include "contact/incremental_slip.hpp"
 #include "contact/load_size.hpp"
 #include "engine/version.hpp"
 #include "engine/wear_stage.hpp"
@@ -152,18 +153,28 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
 
 CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal) {
   CycleStage stage;
-  stage.route = "analogy";  // the only route built; scene validation keeps out what it cannot do
   stage.f = *scene.friction;
   stage.Q_max = scene.Q_max();
   stage.bulk_stress = scene.bulk_stress;
   const ElasticPair& pair = model.pair;
   const double bulk_strain = scene.bulk_stress * (pair.kappa_specimen() + 1.0) / (8.0 * pair.mu_specimen());
-  const TangentialSolver solver(*model.kernel);
-  stage.result = solver.solve_cycle(model.g0, normal.state, normal.zones,
-                                    {scene.P, stage.Q_max, stage.f, bulk_strain});
-  if (stage.result.regime == Regime::reverse_slip)
-    throw UnsupportedError("effects.tangential: " + stage.result.message +
-                           "; the incremental route is not supported yet (issue 3)");
+  const CyclicLoad load{scene.P, stage.Q_max, stage.f, bulk_strain};
+  const TangentialRoute route = scene.tangential->route;
+  if (route != TangentialRoute::incremental) {
+    stage.route = "analogy";
+    stage.result = TangentialSolver(*model.kernel).solve_cycle(model.g0, normal.state, normal.zones, load);
+    if (stage.result.regime != Regime::reverse_slip) return stage;
+    if (route == TangentialRoute::analogy)
+      throw UnsupportedError("effects.tangential: " + stage.result.message +
+                             "; the scene asks for route \"analogy\": use \"auto\" or \"incremental\"");
+  }
+  // The incremental route: the cycle marched in load increments with the traction as memory (reverse slip, and
+  // whatever the analogy cannot do). The steady cycle is the second, after the first loading and one full cycle.
+  IncrementalSlipOptions options;
+  options.increments_per_cycle = scene.tangential->increments;
+  const IncrementalResult r = IncrementalSlipSolver(*model.kernel, options).solve(normal.state, load);
+  stage.route = route == TangentialRoute::incremental ? "incremental" : "incremental (auto: the analogy found reverse slip)";
+  stage.result = r.cycles.back();
   return stage;
 }
 

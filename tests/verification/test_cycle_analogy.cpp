@@ -169,9 +169,19 @@ TEST_CASE("paper 001's Mindlin and shifted cases in SI") {
   const Run r = run(s);
   CHECK(r.cycle.result.stick_zone->first == test::rel(-0.603673 * a, 1e-3));
   CHECK(r.cycle.result.stick_zone->second == test::rel(0.879567 * a, 1e-3));
-  // Reverse slip (σ = 44 124 psi) is beyond the analogy: it must be refused, never computed wrongly.
+  // Reverse slip (σ = 44 124 psi) is beyond the analogy: asked for explicitly, it is refused, never computed
+  // wrongly; under "auto" the incremental route takes over (tests/verification/test_cycle_incremental.cpp).
   s.bulk_stress = 44124 * psi;
+  s.tangential->route = TangentialRoute::analogy;
   CHECK_THROWS_AS(run(s), UnsupportedError);
+  s.tangential->route = TangentialRoute::automatic;
+  const Run auto_run = run(s);
+  CHECK(auto_run.cycle.result.regime == Regime::reverse_slip);
+  CHECK(auto_run.cycle.route.find("incremental") == 0);
+  // Paper 001: narrower and shifted about twice as far as the 12 134 psi case ([−0.603673, 0.879567] a).
+  const auto& z = *auto_run.cycle.result.stick_zone;
+  CHECK(z.second - z.first < 0.8 * (0.879567 + 0.603673) * a);
+  CHECK(0.5 * (z.first + z.second) > 1.8 * 0.5 * (0.879567 - 0.603673) * a);
 }
 
 TEST_CASE("gross slip is reported, with no stick zone and nothing divided by zero") {

@@ -20,6 +20,7 @@
 #include "engine/output.hpp"
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"
+#include "engine/sweep.hpp"
 #include "engine/version.hpp"
 #include "engine/wear_stage.hpp"
 
@@ -211,7 +212,14 @@ int main(int argc, char** argv) {
   conv_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
   conv_cmd->add_option("--from", from, "coarsest grid (cells)")->check(CLI::Range(16, 1 << 20));
   conv_cmd->add_option("--to", to, "finest grid (cells)")->check(CLI::Range(16, 1 << 20));
-  for (auto* sub : {run_cmd, validate_cmd, conv_cmd}) {
+  std::vector<std::string> vary;
+  int jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  auto* sweep_cmd = app.add_subcommand("sweep", "run the product of variations of a scene on the local cores");
+  sweep_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
+  sweep_cmd->add_option("--vary", vary, "key=v1,v2,... (a dotted scene key, e.g. load.Q.ratio=0.2,0.4,0.6); repeat")
+      ->required();
+  sweep_cmd->add_option("--jobs", jobs, "runs at once (default: the number of cores)")->check(CLI::Range(1, 256));
+  for (auto* sub : {run_cmd, validate_cmd, conv_cmd, sweep_cmd}) {
     sub->add_flag("-q,--quiet", quiet, "print nothing but errors");
     sub->add_flag("-v,--verbose", verbose, "print more detail");
   }
@@ -235,6 +243,17 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*conv_cmd) return convergence(scene_path, from, to, quiet);
+    if (*sweep_cmd) {
+      std::vector<Variation> variations;
+      for (const auto& v : vary) variations.push_back(parse_variation(v));
+      const SweepResult r = run_sweep(scene_path, variations, jobs, quiet ? nullptr : &std::cerr);
+      int failed = 0;
+      for (const auto& run : r.runs) failed += run.status != 0;
+      if (!quiet)
+        std::cout << fmt::format("{} runs, {} failed; table in {}\n", r.runs.size(), failed,
+                                 (r.dir / "sweep.csv").string());
+      return failed == 0 ? 0 : kExitNoConvergence;
+    }
   } catch (const InputError& e) {
     std::cerr << "fretwear: " << e.what() << "\n";
     return kExitInvalid;

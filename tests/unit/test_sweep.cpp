@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "engine/scene.hpp"
@@ -71,4 +72,13 @@ TEST_CASE("a sweep with an invalid variant names it and runs nothing") {
   }
   CHECK_FALSE(fs::exists(scratch.path / "out"));
   CHECK_THROWS_AS(parse_variation("load.P"), InputError);
+}
+
+TEST_CASE("fretwear sweep on the command line: runs, table, exit 0; a bad --vary exits 2") {
+  Scratch scratch;
+  const fs::path scene = write_scene(scratch.path);
+  const std::string base = "cd '" + scratch.path.string() + "' && '" FRETWEAR_EXE "' sweep '" + scene.string() + "' ";
+  CHECK(WEXITSTATUS(std::system((base + "--vary load.Q.ratio=0.2,0.4 --jobs 2 -q").c_str())) == 0);
+  CHECK(fs::exists(scratch.path / "out" / "sweep.csv"));
+  CHECK(WEXITSTATUS(std::system((base + "--vary load.Q.ratio -q 2>/dev/null").c_str())) == 2);
 }

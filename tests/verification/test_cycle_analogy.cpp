@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include "scenes.hpp"
 #include "support.hpp"
 
 #include "contact/closed_form.hpp"
@@ -17,20 +18,7 @@ namespace {
 
 constexpr double kE = 200e9, kNu = 0.3, kR = 0.01, kF = 0.5;
 
-Scene hertz_cycle(double P, double ratio, int cells, double sigma = 0.0) {
-  Scene s;
-  s.name = "cycle";
-  s.pad = s.specimen = {kE, kNu};
-  s.profile.type = ProfileType::cylinder;
-  s.profile.R = kR;
-  s.P = P;
-  s.cells = cells;
-  s.friction = kF;
-  s.Q_ratio = ratio;
-  s.bulk_stress = sigma;
-  s.tangential = TangentialEffect{};
-  return s;
-}
+using test::hertz_cycle;  // tests/scenes.hpp
 
 struct Run {
   Model model;

@@ -20,6 +20,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include "scenes.hpp"
 #include "support.hpp"
 
 #include "contact/closed_form.hpp"
@@ -37,20 +38,7 @@ constexpr double kAgreeSlip = 1e-7;      // of the largest slip range, and relat
 constexpr double kAgreeEdge = 1e-4;      // of a cell
 constexpr double kTightNormal = 1e-11;   // the analogy's normal solves in the route comparison
 
-Scene hertz_cycle(double P, double ratio, int cells, double sigma = 0.0) {
-  Scene s;
-  s.name = "cycle";
-  s.pad = s.specimen = {kE, kNu};
-  s.profile.type = ProfileType::cylinder;
-  s.profile.R = kR;
-  s.P = P;
-  s.cells = cells;
-  s.friction = kF;
-  s.Q_ratio = ratio;
-  s.bulk_stress = sigma;
-  s.tangential = TangentialEffect{};
-  return s;
-}
+using test::hertz_cycle;  // tests/scenes.hpp
 
 CyclicLoad cyclic_load(const Scene& s, const Model& m) {
   const double strain = s.bulk_stress * (m.pair.kappa_specimen() + 1.0) / (8.0 * m.pair.mu_specimen());

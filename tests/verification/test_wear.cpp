@@ -9,6 +9,7 @@
 #include "contact/closed_form.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
+#include "scenes.hpp"
 #include "support.hpp"
 
 using namespace fretwear;
@@ -18,16 +19,8 @@ namespace {
 constexpr double kE = 200e9, kNu = 0.3, kR = 0.01, kF = 0.5, kP = 1e5;
 
 Scene hertz_wear(double ratio, double cycles, int cells, const std::string& law = "archard", double c = 1e-12) {
-  Scene s;
+  Scene s = test::hertz_cycle(kP, ratio, cells);
   s.name = "wear";
-  s.pad = s.specimen = {kE, kNu};
-  s.profile.type = ProfileType::cylinder;
-  s.profile.R = kR;
-  s.P = kP;
-  s.cells = cells;
-  s.friction = kF;
-  s.Q_ratio = ratio;
-  s.tangential = TangentialEffect{};
   s.tangential_implied = true;
   WearEffect w;
   w.law = law;

@@ -30,6 +30,10 @@ double Hertz::cell_average(double x0, double x1) const {
   return p0 * a * (I(x1 / a) - I(x0 / a)) / (x1 - x0);
 }
 
+StickZone hertz_stick(const Hertz& h, double q_ratio, double f, double sigma) {
+  return {h.a * sigma / (4.0 * f * h.p0), h.a * std::sqrt(std::max(0.0, 1.0 - q_ratio))};
+}
+
 double D(double theta) { return kPi - 2.0 * theta - std::sin(2.0 * theta); }
 
 double B(double phi, double phi0) {
@@ -55,6 +59,18 @@ RoundedPunch rounded_punch(double P, double A, double a, double R) {
                                                      boost::math::tools::eps_tolerance<double>(52), it);
   const double phi0 = 0.5 * (lo + hi);
   return {a, R, P, a / std::sin(phi0), phi0};
+}
+
+double rounded_punch_stick(const RoundedPunch& r, double q_ratio) {
+  if (q_ratio <= 0.0) return r.b;
+  if (q_ratio >= 1.0) return r.a;
+  // The right side falls from 1 at c = a (ψ0 = π/2, D = 0) to 0 at c = b.
+  auto g = [&](double c) {
+    return 1.0 - (c / r.b) * (c / r.b) * D(std::asin(std::min(1.0, r.a / c))) / D(r.phi0) - q_ratio;
+  };
+  std::uintmax_t it = 200;
+  auto [lo, hi] = boost::math::tools::toms748_solve(g, r.a, r.b, boost::math::tools::eps_tolerance<double>(50), it);
+  return 0.5 * (lo + hi);
 }
 
 double RoundedPunch::pressure(double x) const {

@@ -12,6 +12,14 @@ struct Hertz {
 };
 Hertz hertz(double P, double A, double R);
 
+// The stick zone [centre − c, centre + c] of the Hertz contact at the top of a cycle to Q/fP = q_ratio with a bulk
+// tension sigma (Pa) in phase (PHYSICS.md, "Partial slip"): c/a = √(1 − Q/fP) (Cattaneo 1938, Mindlin 1949), shifted
+// toward the leading edge by e/a = σ/(4 f p0) (Nowell and Hills 1987). Valid short of reverse slip, e + c ≤ a.
+struct StickZone {
+  double centre, c;  // m
+};
+StickZone hertz_stick(const Hertz& h, double q_ratio, double f, double sigma);
+
 // Flat punch of flat half-length a with parabolic corners of radius R (paper 000, eqs 3–4, corrected in PHYSICS.md).
 struct RoundedPunch {
   double a, R, P;
@@ -23,6 +31,9 @@ struct RoundedPunch {
 };
 // Throws InputError if the load cannot be carried (never: every P > 0 has a solution).
 RoundedPunch rounded_punch(double P, double A, double a, double R);
+// Stick half-width c (m) of the rounded punch at Q/fP = q_ratio ∈ [0, 1], no bulk stress (paper 000 eq 9 as
+// corrected in PHYSICS.md): Q/fP = 1 − (c/b)² D(ψ0)/D(φ0), sin ψ0 = a/c, a ≤ c ≤ b.
+double rounded_punch_stick(const RoundedPunch& r, double q_ratio);
 // D(θ) = π − 2θ − sin 2θ and B(φ; φ0) of PHYSICS.md.
 double D(double theta);
 double B(double phi, double phi0);

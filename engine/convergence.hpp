@@ -1,5 +1,8 @@
 // `fretwear convergence`: the scene's normal problem on grids of doubling size, against the closed form where the
 // profile has one (Hertz, rounded punch, flat punch) and against the finest grid otherwise. What accuracy costs.
+// When the scene names effects.tangential, the cycle is solved on every grid too and its stick zone compared with
+// the closed form (Hertz with or without bulk tension; the rounded punch without it; PHYSICS.md, "Partial slip") or
+// else with the finest grid.
 #pragma once
 
 #include <ostream>
@@ -15,13 +18,19 @@ struct ConvergenceRow {
   double x_left = 0.0, x_right = 0.0, p_max = 0.0;
   double extent_error = 0.0, p_max_error = 0.0, rms_error = 0.0;  // rms_error only against a closed form
   double seconds = 0.0;  // wall time of the normal solve
+  // With effects.tangential: the stick zone at the top of the cycle (m) and max |edge − reference| / c_reference.
+  bool has_stick = false;
+  double stick_left = 0.0, stick_right = 0.0, stick_error = 0.0;
 };
 
 struct ConvergenceStudy {
   std::string against;  // "hertz", "rounded_punch", "flat_punch" or "finest grid"
+  std::string stick_against;  // with effects.tangential: "hertz", "rounded_punch" or "finest grid"
   std::vector<ConvergenceRow> rows;
   // Observed order of the extent error between consecutive grids, log2(e_k / e_{k+1}).
   std::vector<double> observed_order() const;
+  // The same for the stick-zone error (empty without effects.tangential).
+  std::vector<double> observed_stick_order() const;
   std::string table() const;  // fixed-width text
   std::string csv() const;
 };

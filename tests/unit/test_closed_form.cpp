@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include "contact/closed_form.hpp"
+#include "support.hpp"
 
 using namespace fretwear;
 
@@ -127,4 +128,31 @@ TEST_CASE("cell averages of the flat punch and of Hertz integrate to the load") 
   CHECK(std::abs(fp.cell_average(0.3 * b - 1e-9, 0.3 * b + 1e-9) / fp.pressure(0.3 * b) - 1.0) <= 1e-9);
   CHECK(std::abs(fp.pressure(0.0) / (P / (kPi * b)) - 1.0) <= 4.0 * kEps);
   CHECK(fp.pressure(1.1 * b) == 0.0);
+}
+
+TEST_CASE("stick zones: the rounded punch's eq 9 gives PHYSICS.md's c/b; Hertz c/a = √(1 − Q/fP), e/a = σ/(4fp0)") {
+  // PHYSICS.md's table: c/b at Q/fP = 0.2, 0.5, 0.8 for a/b = 0.25, 0.5, 0.75, 0.9.
+  const double want[4][3] = {{0.913933, 0.762002, 0.554325},
+                             {0.938398, 0.831044, 0.688676},
+                             {0.967249, 0.911177, 0.839268},
+                             {0.986460, 0.963558, 0.934753}};
+  const double ratios[3] = {0.2, 0.5, 0.8};
+  const double b = 0.2e-3;
+  for (int i = 0; i < 4; ++i) {
+    const auto rp = closed_form::rounded_punch(load_for(kTable[i].a_over_b, b), kA, kTable[i].a_over_b * b, kR);
+    for (int k = 0; k < 3; ++k) {
+      CAPTURE(kTable[i].a_over_b);
+      CAPTURE(ratios[k]);
+      CHECK(std::abs(closed_form::rounded_punch_stick(rp, ratios[k]) / b - want[i][k]) <= kTableDigit);
+    }
+    CHECK(closed_form::rounded_punch_stick(rp, 0.0) == rp.b);  // no load: all stick
+    CHECK(closed_form::rounded_punch_stick(rp, 1.0) == rp.a);  // sliding: the stick zone shrinks to the flat
+  }
+  // PHYSICS.md's Nowell–Hills case: Q/fP = 0.5, σ/(f p0) = 0.6 gives e/a = 0.15, stick zone [−0.557107, 0.857107] a.
+  const auto h = closed_form::hertz(1e5, kA, kR);
+  const double f = 0.5;
+  const auto z = closed_form::hertz_stick(h, 0.5, f, 0.6 * f * h.p0);
+  CHECK(z.centre / h.a == test::rel(0.15, 1e-12));
+  CHECK((z.centre - z.c) / h.a == test::rel(-0.557107, 1e-6));
+  CHECK((z.centre + z.c) / h.a == test::rel(0.857107, 1e-6));
 }

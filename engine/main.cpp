@@ -85,6 +85,92 @@ class ProgressLine {
   std::optional<std::pair<clock::time_point, double>> first_;
 };
 
+// What a run found, on stdout: one line per stage that ran; --verbose adds how each stage was solved (against the
+// closed form, window, iterations, timings) and where the results are.
+void print_report(const Scene& scene, const RunResult& result, const nlohmann::json& summary, bool verbose) {
+  auto v = [](const nlohmann::json& j) { return j.get<double>(); };
+  const auto& c = summary["contact"];
+  std::cout << fmt::format("{}: contact [{:.6e}, {:.6e}] m in {} zone(s), p_max {:.6e} Pa ({})\n", scene.name,
+                           v(c["extent"][0]), v(c["extent"][1]), c["zones"].size(), v(c["p_max"]),
+                           result.normal.summary.brief());
+  if (verbose) {
+    const auto& g = summary["grid"];
+    std::cout << fmt::format("  grid: {} cells of {:.4e} m over [{:.6e}, {:.6e}] m (window from {})\n",
+                             g["cells"].get<int>(), v(g["h"]), v(g["window"][0]), v(g["window"][1]),
+                             g["window_method"].get<std::string>());
+    if (c.contains("closed_form"))
+      std::cout << fmt::format("  against the closed form ({}): extent {:.2e}, p_max {:.2e}, rms {:.2e}\n",
+                               c["closed_form"]["kind"].get<std::string>(), v(c["closed_form"]["extent_error"]),
+                               v(c["closed_form"]["p_max_error"]), v(c["closed_form"]["rms_error"]));
+  }
+  if (summary.contains("cycle")) {
+    const auto& cy = summary["cycle"];
+    std::cout << fmt::format("  cycle ({}, {} route): Q/fP = {:.4g}", cy["regime"].get<std::string>(),
+                             cy["route"].get<std::string>(), v(cy["Q_over_fP"]));
+    if (!cy["stick_zone"].is_null())
+      std::cout << fmt::format(", stick zone [{:.6e}, {:.6e}] m, slip range {:.4e} m, energy {:.4e} J/m",
+                               v(cy["stick_zone"][0]), v(cy["stick_zone"][1]), v(cy["slip_max"]),
+                               v(cy["dissipated_energy"]));
+    if (cy.contains("message")) std::cout << "\n  " << cy["message"].get<std::string>();
+    std::cout << "\n";
+  }
+  if (summary.contains("wear")) {
+    const auto& w = summary["wear"];
+    std::cout << fmt::format("  wear ({}, {} stepper): {:.4g} cycles in {} steps; worn area {:.4e} m² ({:.1f} % of "
+                             "the asymptote), max depth {:.4e} m",
+                             w["law"].get<std::string>(), w["stepper"].get<std::string>(), v(w["cycles_reached"]),
+                             w["steps"].get<long>(), v(w["worn_area"]), 100.0 * v(w["fraction_of_asymptote"]),
+                             v(w["max_depth"]));
+    if (!w["stick_zone_initial"].is_null() && !w["stick_zone_final"].is_null())
+      std::cout << fmt::format("; stick zone [{:.6e}, {:.6e}] m at the first record, [{:.6e}, {:.6e}] m at the last",
+                               v(w["stick_zone_initial"][0]), v(w["stick_zone_initial"][1]),
+                               v(w["stick_zone_final"][0]), v(w["stick_zone_final"][1]));
+    std::cout << "\n";
+    if (verbose) {
+      const auto& as = w["asymptote"];
+      std::cout << fmt::format("  wear asymptote (computed directly): worn area {:.4e} m², max depth {:.4e} m at "
+                               "x = {:.4e} m, worn extent [{:.6e}, {:.6e}] m\n",
+                               v(as["worn_area"]), v(as["max_depth"]), v(as["x_max_depth"]), v(as["extent"][0]),
+                               v(as["extent"][1]));
+      if (w.contains("implicit_solves"))
+        std::cout << fmt::format("  wear steps: {} accepted, {} rejected; {} implicit and {} cycle solves ({:.1f} and "
+                                 "{:.1f} iterations each); explicit stability limit {:.4g} cycles per step\n",
+                                 w["steps"].get<long>(), w["rejected_steps"].get<long>(),
+                                 w["implicit_solves"].get<long>(), w["cycle_solves"].get<long>(),
+                                 v(w["mean_iterations_implicit"]), v(w["mean_iterations_cycle"]),
+                                 v(w["explicit_stability_limit"]));
+    }
+  }
+  if (summary.contains("stress") && summary["stress"].contains("phases") &&
+      summary["stress"]["phases"].contains("top")) {
+    const auto& top = summary["stress"]["phases"]["top"];
+    std::cout << fmt::format("  stress at the top of the cycle: surface σxx peaks at {:.4e} Pa at x = {:.4e} m on the "
+                             "trailing side; von Mises max {:.4e} Pa\n",
+                             v(top["surface_sxx_trailing_peak"]), v(top["surface_sxx_trailing_peak_x"]),
+                             v(top["von_mises_max"]));
+  }
+  if (summary.contains("crack")) {
+    const auto& k = summary["crack"];
+    const auto& lengths = k["lengths"];
+    const std::size_t last = lengths.size() - 1;
+    std::cout << fmt::format("  crack at x = {:.4e} m: {} lengths; at l = {:.4e} m K_I {:.4e} (top) / {:.4e} "
+                             "(bottom) Pa·m^0.5, K_II {:.4e} / {:.4e}\n",
+                             v(k["x"]), lengths.size(), v(lengths[last]), v(k["K_I_max"][last]), v(k["K_I_min"][last]),
+                             v(k["K_II_max"][last]), v(k["K_II_min"][last]));
+  }
+  if (verbose && summary.contains("timings")) {
+    std::cout << "  timings (s):";
+    for (const auto& [stage, t] : summary["timings"].items()) std::cout << fmt::format(" {} {:.3g}", stage, v(t));
+    std::cout << "\n";
+  }
+  if (verbose && summary.contains("plots")) {
+    std::cout << "  plots:";
+    for (const auto& f : summary["plots"]) std::cout << " " << f.get<std::string>();
+    std::cout << "\n";
+  }
+  std::cout << "results in " << scene.output_dir.string() << "/ (index.html shows them)\n";
+}
+
 int run(const std::string& path, bool quiet, bool verbose, bool resume, double checkpoint_every) {
   const Scene scene = load_scene(path);
   WearControl control;
@@ -135,30 +221,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
       std::error_code ec;
       std::filesystem::remove(control.checkpoint, ec);
     }
-    if (!quiet) {
-      const auto& c = summary["contact"];
-      std::cout << fmt::format("{}: contact [{:.6e}, {:.6e}] m in {} zone(s), p_max {:.6e} Pa ({})\n", scene.name,
-                               c["extent"][0].get<double>(), c["extent"][1].get<double>(), c["zones"].size(),
-                               c["p_max"].get<double>(), result.normal.summary.brief());
-      if (verbose && c.contains("closed_form"))
-        std::cout << fmt::format("  against the closed form ({}): extent {:.2e}, p_max {:.2e}, rms {:.2e}\n",
-                                 c["closed_form"]["kind"].get<std::string>(),
-                                 c["closed_form"]["extent_error"].get<double>(),
-                                 c["closed_form"]["p_max_error"].get<double>(),
-                                 c["closed_form"]["rms_error"].get<double>());
-      if (summary.contains("cycle")) {
-        const auto& cy = summary["cycle"];
-        std::cout << fmt::format("  cycle ({}, {} route): Q/fP = {:.4g}", cy["regime"].get<std::string>(),
-                                 cy["route"].get<std::string>(), cy["Q_over_fP"].get<double>());
-        if (!cy["stick_zone"].is_null())
-          std::cout << fmt::format(", stick zone [{:.6e}, {:.6e}] m, slip range {:.4e} m, energy {:.4e} J/m",
-                                   cy["stick_zone"][0].get<double>(), cy["stick_zone"][1].get<double>(),
-                                   cy["slip_max"].get<double>(), cy["dissipated_energy"].get<double>());
-        if (cy.contains("message")) std::cout << "\n  " << cy["message"].get<std::string>();
-        std::cout << "\n";
-      }
-      std::cout << "results in " << scene.output_dir.string() << "/\n";
-    }
+    if (!quiet) print_report(scene, result, summary, verbose);
   } catch (const ConvergenceError& e) {
     progress.finish();
     out.write_json("summary.json", {{"scene", scene.name}, {"version", kVersion}, {"status", "not_converged"},

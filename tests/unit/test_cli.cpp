@@ -190,3 +190,24 @@ TEST_CASE("a wear run writes wear_history.csv, profiles.csv and the wear plots")
     CHECK(index.find("profiles.csv") != std::string::npos);
   }
 }
+
+TEST_CASE("run reports each stage that ran; --verbose adds how it was solved and where the results are") {
+  TempDir dir;
+  write(dir.path / "s.json", R"({"name": "cli", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "load": {"P": 1e5, "Q": {"ratio": 0.5}, "bulk_stress": {"amplitude": 1e8}}, "grid": {"cells": 256},
+    "effects": {"wear": {"law": "archard", "k": 1e-12, "cycles": 1e4, "record": 3}, "stress": {"nx": 21, "ny": 11},
+                "crack": {"lengths": [1e-5, 2e-5]}}})");
+  std::string out;
+  REQUIRE(run_cli(dir.path, "run s.json", &out) == 0);
+  for (const char* line : {"cli: contact [", "  cycle (partial_slip, analogy route)", "  wear (archard, implicit stepper)",
+                           "  stress at the top of the cycle", "  crack at x = ", "results in "})
+    CHECK_MESSAGE(out.find(line) != std::string::npos, line);
+  CHECK(out.find("timings") == std::string::npos);
+  REQUIRE(run_cli(dir.path, "run s.json -v", &out) == 0);
+  for (const char* line : {"  grid: 256 cells", "  against the closed form (hertz)", "  wear asymptote (computed directly)",
+                           "  wear steps: ", "  timings (s):", "  plots: pressure.svg"})
+    CHECK_MESSAGE(out.find(line) != std::string::npos, line);
+  REQUIRE(run_cli(dir.path, "run s.json -q", &out) == 0);
+  CHECK(out.empty());
+}

@@ -26,7 +26,7 @@
 namespace fretwear {
 
 AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model)
-    : scene_(scene), model_(model), solver_(*model.kernel) {
+    : scene_(scene), model_(model), solver_(*model.kernel), implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
   const double f = *scene.friction;
   const double bulk_strain =
       scene.bulk_stress * (model.pair.kappa_specimen() + 1.0) / (8.0 * model.pair.mu_specimen());
@@ -71,19 +71,21 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   if (out.has_stick) out.stick_left = zones.front().left.x, out.stick_right = zones.back().right.x;
 }
 
-void AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
+bool AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
                                                std::vector<double>& p) {
   const int n = model_.grid.n;
   gap_.resize(n);
   for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
   implicit_.p = p;
-  const SolveSummary s = solver_.solve(gap_, scene_.P, implicit_, d);
+  const SolveSummary s = implicit_solver_.solve(gap_, scene_.P, implicit_, d);
   ++implicit_solves;
   implicit_iterations += s.iterations;
-  if (!s.converged())
-    throw ConvergenceError(fmt::format("wear: the contact-implicit solve stopped ({}) with residual {:.3g}",
-                                       to_string(s.termination), s.residual));
+  if (!s.converged()) {
+    last_unconverged = s;
+    return false;
+  }
   p = implicit_.p;
+  return true;
 }
 
 namespace {
@@ -525,6 +527,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     // First jump: a small share of the asymptote's depth at the initial rate, bounded by the first record.
     const double dN = std::max(1.0, effect.tolerance * stage.asymptote.max_depth / rate_max);
     wear::ImplicitWearStepper stepper(stage.rate_coefficient, effect.tolerance);
+    try {
     drive(
         stepper, wear::ResponseRef{&contact}, dN,
         [&] {
@@ -534,6 +537,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
                       {"implicit_solves", st.stats.implicit_solves},
                       {"responses", st.stats.responses},
                       {"last_error", st.stats.last_error},
+                      {"unconverged", st.stats.unconverged},
                       {"p_full", blob(st.p_full)},
                       {"p_half", blob(st.p_half)}};
         },
@@ -544,11 +548,18 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
           st.stats.implicit_solves = j.at("implicit_solves").get<int>();
           st.stats.responses = j.at("responses").get<int>();
           st.stats.last_error = j.at("last_error").get<double>();
+          st.stats.unconverged = j.value("unconverged", 0);
           st.p_full = unblob(j.at("p_full"));
           st.p_half = unblob(j.at("p_half"));
           stepper.restore(st);
         });
+    } catch (const wear::ImplicitSolveFailure& e) {
+      const SolveSummary& last = contact.last_unconverged;
+      throw ConvergenceError(fmt::format("{} ({}, residual {:.3g})", e.what(), to_string(last.termination),
+                                         last.residual));
+    }
     stage.steps = stepper.stats().accepted;
+    stage.unconverged_steps = stepper.stats().unconverged;
     stage.rejected_steps = stepper.stats().rejected;
     stage.implicit_solves = stepper.stats().implicit_solves;
     stage.responses = stepper.stats().responses;

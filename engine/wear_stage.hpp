@@ -2,6 +2,7 @@
 // computed directly, and the run driven through Boost.Odeint with records.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -56,6 +57,7 @@ struct WearStage {
                                     // (cycles); 0 for the other steppers
   double explicit_max_step = 0.0;   // stepper "explicit": the longest accepted step (cycles), ≤ the cap
   int steps = 0, rejected_steps = 0, implicit_solves = 0, responses = 0;
+  int unconverged_steps = 0;  // implicit steps rejected because a contact-implicit solve did not converge
   double mean_iterations_cycle = 0.0, mean_iterations_implicit = 0.0;  // CG iterations per warm-started solve
   bool interrupted = false;               // stopped on request before the last cycle (records hold what was done)
   double cycles_reached = 0.0;            // where the run stopped (the last cycle when it completed)
@@ -102,7 +104,9 @@ class AnalogyContactResponse : public wear::ContactResponse {
   int cells() const override;
   double cell_width() const override;
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
-  void implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
+  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
+  // The last contact-implicit solve that did not converge (its termination and residual), for the error message.
+  SolveSummary last_unconverged;
   // The last normal and corrective pressures (for records).
   const std::vector<double>& corrective_pressure() const { return corrective_.p; }
   // The warm starts of the solves and the counts below, for checkpoints.
@@ -115,6 +119,15 @@ class AnalogyContactResponse : public wear::ContactResponse {
   const Scene& scene_;
   const Model& model_;
   NormalSolver solver_;
+  // The contact-implicit solves give up sooner than the cycle's: a step whose solve does not converge is retried
+  // with a smaller jump (wear/implicit_stepper.hpp), which is cheaper than iterating on a badly conditioned one.
+  // Converging solves take tens to about 1500 iterations at 4096 cells; the limit grows with the grid.
+  static NormalSolverOptions implicit_options(int cells) {
+    NormalSolverOptions o;
+    o.max_iterations = std::max(2000, cells);
+    return o;
+  }
+  NormalSolver implicit_solver_;
   double tilt_ = 0.0, corrective_load_ = 0.0;
   ContactState normal_, corrective_, implicit_;
   std::vector<double> gap_;

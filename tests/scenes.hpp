@@ -1,6 +1,8 @@
 // PHYSICS.md's public cases as scenes, shared by the tests.
 #pragma once
 
+#include <string>
+
 #include "engine/scene.hpp"
 
 namespace fretwear::test {
@@ -21,6 +23,21 @@ inline Scene hertz_cycle(double P, double ratio, int cells, double sigma = 0.0) 
   s.Q_ratio = ratio;
   s.bulk_stress = sigma;
   s.tangential = TangentialEffect{};
+  return s;
+}
+
+// The same worn by `law` ("archard": k = c; "energy": α = c) for `cycles` cycles, recorded 8 times.
+inline Scene hertz_wear(double P, double ratio, double cycles, int cells, const std::string& law = "archard",
+                        double c = 1e-12) {
+  Scene s = hertz_cycle(P, ratio, cells);
+  s.name = "wear";
+  s.tangential_implied = true;
+  WearEffect w;
+  w.law = law;
+  w.coefficient = c;
+  w.cycles = cycles;
+  w.record_count = 8;
+  s.wear = w;
   return s;
 }
 

@@ -23,8 +23,10 @@ class ContactResponse {
   // The steady cycle on the profile worn by w.
   virtual void respond(std::span<const double> w, CycleResponse& out) = 0;
   // The pressure p that satisfies the contact conditions with gap g0 + w + d p − δ (operator K + diag(d)), i.e. the
-  // end-of-step pressure of a contact-implicit step with d = ΔN c s. p holds a warm start on entry.
-  virtual void implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) = 0;
+  // end-of-step pressure of a contact-implicit step with d = ΔN c s. p holds a warm start on entry. Returns false
+  // when the solve did not reach its tolerance (p is then unusable): the stepper retries with a smaller ΔN, whose
+  // smaller d is better conditioned.
+  virtual bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) = 0;
 };
 
 }  // namespace fretwear::wear

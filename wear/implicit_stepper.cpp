@@ -1,18 +1,21 @@
 #include "wear/implicit_stepper.hpp"
 
+#include <fmt/format.h>
+
 namespace fretwear::wear {
 
 using boost::numeric::odeint::controlled_step_result;
 
-void ImplicitWearStepper::euler(ContactResponse& contact, const state_type& w, const std::vector<double>& s,
+bool ImplicitWearStepper::euler(ContactResponse& contact, const state_type& w, const std::vector<double>& s,
                                 double dN, std::vector<double>& p, state_type& out) {
   const std::size_t n = w.size();
   d_.resize(n);
   for (std::size_t i = 0; i < n; ++i) d_[i] = dN * c_ * s[i];
-  contact.implicit_pressure(w, d_, p);
   ++stats_.implicit_solves;
+  if (!contact.implicit_pressure(w, d_, p)) return false;
   out.resize(n);
   for (std::size_t i = 0; i < n; ++i) out[i] = w[i] + d_[i] * p[i];
+  return true;
 }
 
 controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& contact, state_type& w, time_type& N,
@@ -26,12 +29,22 @@ controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& conta
   if (p_full_.size() != w.size()) p_full_ = response_.p;
   if (p_half_.size() != w.size()) p_half_ = response_.p;
 
-  euler(contact, w, response_.s, dN, p_full_, w_full_);
-  euler(contact, w, response_.s, 0.5 * dN, p_half_, w_half_);
-  contact.respond(w_half_, half_);
-  ++stats_.responses;
-  std::vector<double> p_two = p_half_;
-  euler(contact, w_half_, half_.s, 0.5 * dN, p_two, w_two_);
+  std::vector<double> p_two;
+  const bool solved = euler(contact, w, response_.s, dN, p_full_, w_full_) &&
+                      euler(contact, w, response_.s, 0.5 * dN, p_half_, w_half_) &&
+                      (contact.respond(w_half_, half_), ++stats_.responses, p_two = p_half_,
+                       euler(contact, w_half_, half_.s, 0.5 * dN, p_two, w_two_));
+  if (!solved) {
+    ++stats_.rejected;
+    ++stats_.unconverged;
+    if (dN <= 1.0)
+      throw ImplicitSolveFailure(fmt::format("wear: the contact-implicit solve did not converge at cycle {:.0f} even "
+                                             "for a jump of {:.3g} cycles",
+                                             N, dN));
+    p_full_ = p_half_ = response_.p;  // the failed solves' iterates are no warm start
+    dN *= 0.25;
+    return controlled_step_result::fail;
+  }
 
   double diff = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < w.size(); ++i) {

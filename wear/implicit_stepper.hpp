@@ -9,11 +9,17 @@
 // estimates the error, which sets the next ΔN from the tolerance on the worn profile
 //     err = max_i |w_two halves − w_one step| / (tolerance · max_i w) ≤ 1.
 // Wear never decreases: the extrapolated state is kept at least w_n.
+//
+// A contact-implicit solve that does not converge rejects the step like a too-large error, and ΔN is cut by 4: near
+// the asymptote a large jump gives d = ΔN c s up to 10^5 times the kernel's diagonal on the worn cells, and the
+// constrained CG can stall there (4096 cells, hertz_wear), while a jump a few times smaller converges in a thousand
+// iterations. Below one cycle there is nothing left to cut: ImplicitSolveFailure is thrown.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 #include <vector>
 
 #include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
@@ -24,8 +30,14 @@
 
 namespace fretwear::wear {
 
+// A contact-implicit solve that did not converge even for a jump of one cycle.
+struct ImplicitSolveFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 struct ImplicitStepperStats {
-  int accepted = 0, rejected = 0;  // steps
+  int accepted = 0, rejected = 0;  // steps (rejected counts both causes)
+  int unconverged = 0;             // steps rejected because a contact-implicit solve did not converge
   int implicit_solves = 0, responses = 0;
   double last_error = 0.0;  // err of the last try, ≤ 1 when accepted
 };
@@ -66,7 +78,8 @@ class ImplicitWearStepper {
     contact.respond(w, r);
     std::vector<double> p = r.p;
     state_type out;
-    euler(contact, w, r.s, dN, p, out);
+    if (!euler(contact, w, r.s, dN, p, out))
+      throw ImplicitSolveFailure("wear: the contact-implicit solve did not converge");
     w = out;
   }
 
@@ -85,8 +98,9 @@ class ImplicitWearStepper {
  private:
   boost::numeric::odeint::controlled_step_result try_step_impl(ContactResponse& contact, state_type& w,
                                                                time_type& N, time_type& dN);
-  // One lagged-slip backward-Euler step of size dN from w with slip s; p is the warm start and the result.
-  void euler(ContactResponse& contact, const state_type& w, const std::vector<double>& s, double dN,
+  // One lagged-slip backward-Euler step of size dN from w with slip s; p is the warm start and the result. False
+  // when its solve did not converge.
+  bool euler(ContactResponse& contact, const state_type& w, const std::vector<double>& s, double dN,
              std::vector<double>& p, state_type& out);
 
   double c_, tolerance_;

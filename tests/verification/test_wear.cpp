@@ -19,16 +19,7 @@ namespace {
 constexpr double kE = 200e9, kNu = 0.3, kR = 0.01, kF = 0.5, kP = 1e5;
 
 Scene hertz_wear(double ratio, double cycles, int cells, const std::string& law = "archard", double c = 1e-12) {
-  Scene s = test::hertz_cycle(kP, ratio, cells);
-  s.name = "wear";
-  s.tangential_implied = true;
-  WearEffect w;
-  w.law = law;
-  w.coefficient = c;
-  w.cycles = cycles;
-  w.record_count = 8;
-  s.wear = w;
-  return s;
+  return test::hertz_wear(kP, ratio, cycles, cells, law, c);
 }
 
 struct Run {

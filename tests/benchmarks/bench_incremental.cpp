@@ -10,23 +10,15 @@
 #include "contact/closed_form.hpp"
 #include "contact/incremental_slip.hpp"
 #include "engine/simulation.hpp"
+#include "scenes.hpp"
 
 namespace {
 using namespace fretwear;
 
 Scene hertz_cycle(int cells, double ratio, double sigma_over_fp0) {
-  Scene s;
+  const auto hz = closed_form::hertz(1e5, 4 * (1 - 0.3 * 0.3) / 200e9, test::kHertzR);
+  Scene s = test::hertz_cycle(1e5, ratio, cells, sigma_over_fp0 * test::kHertzF * hz.p0);
   s.name = "bench";
-  s.pad = s.specimen = {200e9, 0.3};
-  s.profile.type = ProfileType::cylinder;
-  s.profile.R = 0.01;
-  s.P = 1e5;
-  s.cells = cells;
-  s.friction = 0.5;
-  s.Q_ratio = ratio;
-  const auto hz = closed_form::hertz(s.P, 4 * (1 - 0.3 * 0.3) / 200e9, s.profile.R);
-  s.bulk_stress = sigma_over_fp0 * 0.5 * hz.p0;
-  s.tangential = TangentialEffect{};
   return s;
 }
 

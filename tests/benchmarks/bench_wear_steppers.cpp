@@ -24,6 +24,7 @@
 
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
+#include "scenes.hpp"
 
 namespace {
 using namespace fretwear;
@@ -36,24 +37,11 @@ constexpr double kBudgetError = 1e-2;     // ARCHITECTURE.md: 1 % wear-profile e
 constexpr int kBudgetSteps = 50;          // ... in ≤ 50 steps
 
 Scene hertz_wear(const std::string& stepper, double tolerance) {
-  Scene s;
+  Scene s = test::hertz_wear(1e5, 0.5, kCycles, kCells);
   s.name = "bench_wear_steppers";
-  s.pad = s.specimen = {200e9, 0.3};
-  s.profile.type = ProfileType::cylinder;
-  s.profile.R = 0.01;
-  s.P = 1e5;
-  s.cells = kCells;
-  s.friction = 0.5;
-  s.Q_ratio = 0.5;
-  s.tangential = TangentialEffect{};
-  s.tangential_implied = true;
-  WearEffect w;
-  w.coefficient = 1e-12;
-  w.cycles = kCycles;
-  w.record = {1e3, 1e4, kCycles};
-  w.stepper = stepper;
-  w.tolerance = tolerance;
-  s.wear = w;
+  s.wear->record = {1e3, 1e4, kCycles};
+  s.wear->stepper = stepper;
+  s.wear->tolerance = tolerance;
   return s;
 }
 

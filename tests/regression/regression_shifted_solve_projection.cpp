@@ -6,25 +6,15 @@
 
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
+#include "scenes.hpp"
 
 using namespace fretwear;
 
 TEST_CASE("a shift-dominated contact-implicit solve on the worn limit converges in tens of iterations") {
   for (int cells : {1024, 2048}) {
     CAPTURE(cells);
-    Scene s;
+    Scene s = test::hertz_wear(1e5, 0.5, 1, cells);
     s.name = "shifted";
-    s.pad = s.specimen = {200e9, 0.3};
-    s.profile.R = 0.01;
-    s.P = 1e5;
-    s.cells = cells;
-    s.friction = 0.5;
-    s.Q_ratio = 0.5;
-    s.tangential = TangentialEffect{};
-    WearEffect wear;
-    wear.coefficient = 1e-12;
-    wear.cycles = 1;
-    s.wear = wear;
     const Model m = make_model(s);
     const NormalResult n = solve_normal(s, m);
     const WearAsymptote a = wear_asymptote(s, m, n);

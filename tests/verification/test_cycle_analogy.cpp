@@ -140,11 +140,7 @@ TEST_CASE("Nowell-Hills: bulk tension shifts the stick zone by e/a = sigma/(4 f 
 
 TEST_CASE("paper 001's Mindlin and shifted cases in SI") {
   const double in = 0.0254, psi = 6894.757;
-  Scene s = hertz_cycle(210152.2, 0.0, 2048);
-  s.Q_ratio.reset();
-  s.Q_amplitude = 47284.25;
-  s.profile.R = 25.4e-3;
-  s.pad = s.specimen = {63.545e9, 0.3};
+  Scene s = test::paper001_mindlin(2048);
   const double a = 0.01737 * in;
   {
     const Run r = run(s);

@@ -12,6 +12,7 @@
 #include "contact/error.hpp"
 #include "contact/normal_solver.hpp"
 #include "engine/simulation.hpp"
+#include "scenes.hpp"
 
 using namespace fretwear;
 
@@ -27,21 +28,10 @@ const double kSolverTolerance = NormalSolverOptions{}.tolerance;
 double A_strain() { return ElasticPair({kE, kNu}, {kE, kNu}, PlaneState::strain).A(); }
 
 Scene scene(const ProfileSpec& profile, double P, int cells) {
-  Scene s;
-  s.name = "hard_case";
-  s.pad = s.specimen = {kE, kNu};
-  s.profile = profile;
-  s.P = P;
-  s.cells = cells;
-  return s;
+  return test::normal_scene(profile, P, cells, "hard_case");
 }
 
-ProfileSpec cylinder() {
-  ProfileSpec s;
-  s.type = ProfileType::cylinder;
-  s.R = kR;
-  return s;
-}
+ProfileSpec cylinder(double offset = 0.0) { return test::cylinder(offset); }
 
 double total_load(const NormalResult& r) {
   double load = 0.0;

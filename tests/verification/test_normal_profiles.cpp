@@ -12,6 +12,7 @@
 #include "contact/closed_form.hpp"
 #include "contact/normal_solver.hpp"
 #include "engine/simulation.hpp"
+#include "scenes.hpp"
 
 using namespace fretwear;
 
@@ -33,22 +34,10 @@ const double kSolverTolerance = NormalSolverOptions{}.tolerance;
 double A_strain() { return ElasticPair({kE, kNu}, {kE, kNu}, PlaneState::strain).A(); }
 
 Scene scene(const ProfileSpec& profile, double P, int cells) {
-  Scene s;
-  s.name = "verification";
-  s.pad = s.specimen = {kE, kNu};
-  s.profile = profile;
-  s.P = P;
-  s.cells = cells;
-  return s;
+  return test::normal_scene(profile, P, cells, "verification");
 }
 
-ProfileSpec cylinder(double offset = 0.0) {
-  ProfileSpec s;
-  s.type = ProfileType::cylinder;
-  s.R = kR;
-  s.offset_x = offset;
-  return s;
-}
+ProfileSpec cylinder(double offset = 0.0) { return test::cylinder(offset); }
 
 double load_of(const NormalResult& r, int first, int last) {
   double load = 0.0;

@@ -16,13 +16,14 @@
 #include "contact/error.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
+#include "scenes.hpp"
 #include "support.hpp"
 
 using namespace fretwear;
 
 namespace {
 
-constexpr double kE = 200e9, kNu = 0.3, kR = 0.01, kF = 0.5, kP = 1e5;
+constexpr double kP = 1e5;
 constexpr double kK = 1e-13;       // Archard (1/Pa)
 constexpr double kCycles = 1e4;
 constexpr int kCells = 256;
@@ -31,24 +32,11 @@ constexpr int kCells = 256;
 constexpr double kAgreement = 1e-2;
 
 Scene hertz_wear(const std::string& stepper, double tolerance, double k = kK) {
-  Scene s;
+  Scene s = test::hertz_wear(kP, 0.5, kCycles, kCells, "archard", k);
   s.name = "wear_steppers";
-  s.pad = s.specimen = {kE, kNu};
-  s.profile.type = ProfileType::cylinder;
-  s.profile.R = kR;
-  s.P = kP;
-  s.cells = kCells;
-  s.friction = kF;
-  s.Q_ratio = 0.5;
-  s.tangential = TangentialEffect{};
-  s.tangential_implied = true;
-  WearEffect w;
-  w.coefficient = k;
-  w.cycles = kCycles;
-  w.record = {1e3, 3e3, kCycles};
-  w.stepper = stepper;
-  w.tolerance = tolerance;
-  s.wear = w;
+  s.wear->record = {1e3, 3e3, kCycles};
+  s.wear->stepper = stepper;
+  s.wear->tolerance = tolerance;
   return s;
 }
 

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -14,64 +17,269 @@ namespace fretwear {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+// The largest violation, relative to the load, of a contact set kept when the active set cycles.
+constexpr double kCycleTolerance = 1e-3;
+using Complex = std::complex<double>;
 
-// k̂(t, s) of the header: the Cauchy term and the free surface's image terms.
-double kernel(double t, double s) {
+// PHYSICS.md's kernel of a crack normal to the surface: the Cauchy term and the free surface's image terms.
+double normal_kernel(double t, double s) {
   const double u = 2.0 + t + s, v = 1.0 + s;
   return 1.0 / (t - s) - 1.0 / u - 2.0 * v / (u * u) + 4.0 * v * v / (u * u * u);
 }
 
+// (cos α, sin α), exact at α = 90°.
+std::pair<double, double> direction(double angle_deg) {
+  const double d = (90.0 - angle_deg) * kPi / 180.0;
+  return {std::sin(d), std::cos(d)};
+}
+
+// σ at z of the half-plane dislocation at z0 with γ = (b_y − i b_x)/2, in units of 2μ/(π(κ + 1)) (header).
+Stress dislocation_stress(Complex z, Complex z0, Complex g) {
+  const Complex zb0 = std::conj(z0), gb = std::conj(g), d = zb0 - z0;
+  const Complex a = 1.0 / (z - z0), c = 1.0 / (z - zb0);
+  const Complex Phi = g * (a - c) + gb * d * c * c;
+  const Complex dPhi = g * (c * c - a * a) - 2.0 * gb * d * c * c * c;
+  const Complex Phib = gb * (c - a) - g * d * a * a;  // conj Φ(z̄)
+  const double S1 = 4.0 * Phi.real();
+  const Complex S2 = 2.0 * ((std::conj(z) - z) * dPhi - Phi - Phib);
+  return {0.5 * (S1 - S2.real()), 0.5 * (S1 + S2.real()), 0.5 * S2.imag()};
+}
+
+// (σ_n, τ) on a line at (cos α, sin α) = (c, s): header.
+std::pair<double, double> resolve(const Stress& x, double c, double s) {
+  return {x.xx * s * s + x.yy * c * c - 2.0 * x.xy * s * c, (x.xx - x.yy) * s * c - x.xy * (c * c - s * s)};
+}
+
 }  // namespace
+
+CrackKernel crack_kernel(double angle_deg, double t, double s) {
+  const auto [c, sn] = direction(angle_deg);
+  const Complex e(c, sn), z = (1.0 + t) * e, z0 = (1.0 + s) * e;
+  // b = −n̂ (opening): γ = e/2;  b = −t̂ (sliding): γ = i e/2.
+  const auto [n1, t1] = resolve(dislocation_stress(z, z0, 0.5 * e), c, sn);
+  const auto [n2, t2] = resolve(dislocation_stress(z, z0, Complex(0.0, 0.5) * e), c, sn);
+  return {{{n1, n2}, {t1, t2}}};
+}
 
 std::string CrackSolverOptions::validate() const {
   if (n_quadrature < 2 || n_quadrature > 1000)
     return fmt::format("n_quadrature = {}: must be in [2, 1000]", n_quadrature);
   if (table_points < 8) return fmt::format("table_points = {}: must be at least 8", table_points);
+  if (max_contact_iterations < 1)
+    return fmt::format("max_contact_iterations = {}: must be at least 1", max_contact_iterations);
   return {};
 }
 
-CrackSolver::CrackSolver(CrackSolverOptions options) : options_(options) {
+std::string CrackSpec::validate() const {
+  if (!(angle_deg >= kMinAngle && angle_deg <= 180.0 - kMinAngle))
+    return fmt::format("angle_deg = {}: must be in [{}, {}] degrees", angle_deg, kMinAngle, 180.0 - kMinAngle);
+  if (!(face_friction >= 0.0) || !std::isfinite(face_friction))
+    return fmt::format("face_friction = {}: must be a finite number >= 0", face_friction);
+  return {};
+}
+
+CrackSolver::CrackSolver(CrackSolverOptions options, CrackSpec crack) : options_(options), crack_(crack) {
   if (const std::string m = options_.validate(); !m.empty()) throw InputError("crack solver options: " + m);
+  if (const std::string m = crack_.validate(); !m.empty()) throw InputError("crack: " + m);
   const int N = options_.n_quadrature;
   const double d = 2.0 * N + 1.0;
   s_.resize(N);
   t_.resize(N);
   L1_.resize(N);
+  std::vector<double> theta(N);
   for (int i = 1; i <= N; ++i) {
-    const double theta = kPi * (2.0 * i - 1.0) / d;
-    s_[i - 1] = std::cos(theta);
+    theta[i - 1] = kPi * (2.0 * i - 1.0) / d;
+    s_[i - 1] = std::cos(theta[i - 1]);
     t_[i - 1] = std::cos(2.0 * kPi * i / d);
     // L_i(1) = (2/(2N + 1)) (−1)^{i+1} cot(θ_i/2) cos(θ_i/2)
     const double sign = (i % 2 == 1) ? 1.0 : -1.0;
-    L1_[i - 1] = 2.0 / d * sign * std::cos(0.5 * theta) / std::tan(0.5 * theta);
+    L1_[i - 1] = 2.0 / d * sign * std::cos(0.5 * theta[i - 1]) / std::tan(0.5 * theta[i - 1]);
   }
-  Eigen::MatrixXd M(N, N);
+  uncoupled_ = crack_.angle_deg == 90.0;
+  M_ = Eigen::MatrixXd::Zero(2 * N, 2 * N);
   for (int k = 0; k < N; ++k)
-    for (int i = 0; i < N; ++i) M(k, i) = 2.0 * (1.0 + s_[i]) / d * kernel(t_[k], s_[i]);
-  lu_.compute(M);
-  // z = −M⁻ᵀ L(1): φ(1) = L(1) · φ = L(1) · M⁻¹(−σ) = z · σ.
-  const Eigen::VectorXd L = Eigen::Map<const Eigen::VectorXd>(L1_.data(), N);
-  const Eigen::VectorXd z = -Eigen::PartialPivLU<Eigen::MatrixXd>(M.transpose()).solve(L);
-  z_.assign(z.data(), z.data() + N);
+    for (int i = 0; i < N; ++i) {
+      const double W = 2.0 * (1.0 + s_[i]) / d;
+      if (uncoupled_) {
+        M_(k, i) = M_(N + k, N + i) = W * normal_kernel(t_[k], s_[i]);
+      } else {
+        const CrackKernel K = crack_kernel(crack_.angle_deg, t_[k], s_[i]);
+        M_(k, i) = W * K[0][0];
+        M_(k, N + i) = W * K[0][1];
+        M_(N + k, i) = W * K[1][0];
+        M_(N + k, N + i) = W * K[1][1];
+      }
+    }
+  if (uncoupled_)
+    lu_.compute(M_.topLeftCorner(N, N));
+  else
+    lu_.compute(M_);
+  // Q_ki = ∫_{t_k}^1 w L_i ds: the interpolant Σ_j a_j V_j with a_j = Σ_i W_i V_j(s_i) φ_i (Gauss–Jacobi is exact
+  // for V_j V_m, ∫ w V_j V_m = π δ_jm), and ∫_t^1 w V_j ds = sin((j + 1)θ)/(j + 1) + sin(jθ)/j (θ for j = 0).
+  Eigen::MatrixXd I(N, N), V(N, N);
+  for (int k = 0; k < N; ++k) {
+    const double th = 2.0 * kPi * (k + 1) / d;
+    for (int j = 0; j < N; ++j) I(k, j) = std::sin((j + 1) * th) / (j + 1) + (j == 0 ? th : std::sin(j * th) / j);
+  }
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i)
+      V(j, i) = 2.0 * (1.0 + s_[i]) / d * std::cos((j + 0.5) * theta[i]) / std::cos(0.5 * theta[i]);
+  Q_ = I * V;
 }
 
-CrackSif CrackSolver::from_loads(double l, std::span<const double> normal, std::span<const double> shear) const {
-  double phi_I = 0.0, phi_II = 0.0;
-  for (std::size_t k = 0; k < z_.size(); ++k) {
-    phi_I += z_[k] * normal[k];
-    phi_II += z_[k] * shear[k];
-  }
+Eigen::VectorXd CrackSolver::open_density(const Eigen::VectorXd& rhs) const {
+  if (!uncoupled_) return lu_.solve(rhs);
+  const Eigen::Index N = Eigen::Index(s_.size());
+  Eigen::VectorXd phi(2 * N);
+  phi.head(N) = lu_.solve(rhs.head(N));
+  phi.tail(N) = lu_.solve(rhs.tail(N));
+  return phi;
+}
+
+CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std::span<const double> shear,
+                                   bool detail) const {
+  const Eigen::Index N = Eigen::Index(s_.size());
+  Eigen::VectorXd sigma(2 * N);
+  for (Eigen::Index k = 0; k < N; ++k) sigma(k) = normal[k], sigma(N + k) = shear[k];
+  const Eigen::Map<const Eigen::VectorXd> L(L1_.data(), N);
   const double scale = std::sqrt(2.0 * kPi * l);  // K = √(2πl) φ(1)
+  // Tolerances of the inequalities, relative to the load: the opening integral and φ are in Pa, like σ.
+  const double load = std::max(sigma.cwiseAbs().maxCoeff(), 1e-300);
+  const double tol = 1e-10 * load, tol_K = 1e-10 * load * scale;
+
+  Eigen::VectorXd phi = open_density(-sigma);
   CrackSif r;
   r.l = l;
-  r.K_I_open = scale * phi_I;
-  r.K_II = scale * phi_II;
-  r.closed = r.K_I_open < 0.0;
-  r.K_I = r.closed ? 0.0 : r.K_I_open;
-  return r;
+  r.K_I_open = scale * L.dot(phi.head(N));
+  r.K_II_open = scale * L.dot(phi.tail(N));
+
+  // States: 0 open, 1 stick, +2/−2 slip with sign(h) = ±1.
+  std::vector<int> state(std::size_t(N), 0);
+  Eigen::VectorXd g = Q_ * phi.head(N);
+  // A point that closes keeps sliding the way the faces were sliding there (h); it sticks only with friction and
+  // no slip to follow.
+  const auto closing = [&](double h) { return h > 0.0 ? 2 : h < 0.0 ? -2 : crack_.face_friction > 0.0 ? 1 : 2; };
+  Eigen::VectorXd h = Q_ * phi.tail(N);
+  bool overlap = r.K_I_open < -tol_K;
+  for (Eigen::Index k = 0; k < N; ++k)
+    if (g(k) < -tol) state[k] = closing(h(k)), overlap = true;
+  if (r.K_I_open < -tol_K) state[0] = closing(h(0));
+
+  Eigen::VectorXd Tn = Eigen::VectorXd::Zero(N), Tt = Eigen::VectorXd::Zero(N);
+  double K_I = r.K_I_open;
+  if (overlap) {
+    const double f = crack_.face_friction;
+    bool settled = false;
+    // Every set tried, with the solution and its largest violation: a set met again closes a cycle.
+    struct Pass {
+      std::vector<int> state;
+      Eigen::VectorXd phi;
+      double worst;
+    };
+    std::vector<Pass> passes;
+    for (int it = 1; it <= options_.max_contact_iterations && !settled; ++it) {
+      r.contact_iterations = it;
+      Eigen::MatrixXd A = M_;
+      Eigen::VectorXd b = -sigma;
+      for (Eigen::Index k = 0; k < N; ++k) {
+        if (state[k] == 0) continue;
+        A.row(k).setZero();  // g(t_k) = 0
+        A.row(k).head(N) = Q_.row(k);
+        b(k) = 0.0;
+        if (state[k] == 1) {  // h(t_k) = 0
+          A.row(N + k).setZero();
+          A.row(N + k).tail(N) = Q_.row(k);
+          b(N + k) = 0.0;
+        } else {  // T = f p sign(h) = −f sign(h) σ_n,total
+          const double fs = f * (state[k] > 0 ? 1.0 : -1.0);
+          A.row(N + k) = M_.row(N + k) + fs * M_.row(k);
+          b(N + k) = -(sigma(N + k) + fs * sigma(k));
+        }
+      }
+      phi = A.partialPivLu().solve(b);
+      const Eigen::VectorXd total = sigma + M_ * phi;
+      Tn = total.head(N);
+      Tt = total.tail(N);
+      g = Q_ * phi.head(N);
+      h = Q_ * phi.tail(N);
+      K_I = scale * L.dot(phi.head(N));
+      // Every violated inequality, by how much (Pa). The first passes change every violating point; past
+      // kAllAtOnce passes only the worst one, which breaks the cycles a stick–slip or open–closed boundary
+      // falling between two collocation points can cause.
+      std::vector<std::pair<double, Eigen::Index>> violations;
+      std::vector<int> next = state;
+      for (Eigen::Index k = 0; k < N; ++k) {
+        const double p = -Tn(k);
+        double by = 0.0;
+        if (state[k] == 0) {
+          if (g(k) < -tol) next[k] = closing(h(k)), by = -g(k);
+        } else if (p < -tol) {
+          next[k] = 0, by = -p;
+        } else if (state[k] == 1) {
+          if (std::abs(Tt(k)) > f * p + tol) next[k] = Tt(k) > 0.0 ? 2 : -2, by = std::abs(Tt(k)) - f * p;
+        } else if (const double hs = state[k] > 0 ? h(k) : -h(k); hs < -tol) {
+          next[k] = 1, by = -hs;
+        }
+        if (next[k] != state[k]) violations.emplace_back(by, k);
+      }
+      if (state[0] == 0 && K_I < -tol_K && next[0] == 0) next[0] = closing(h(0)), violations.emplace_back(-K_I / scale, 0);
+      settled = violations.empty();
+      if (settled) break;
+      passes.push_back({state, phi, std::max_element(violations.begin(), violations.end())->first});
+      constexpr int kAllAtOnce = 20;
+      if (it <= kAllAtOnce) {
+        state = next;
+      } else {
+        const Eigen::Index k = std::max_element(violations.begin(), violations.end())->second;
+        state[k] = next[k];
+      }
+      const auto seen = std::find_if(passes.begin(), passes.end(), [&](const Pass& q) { return q.state == state; });
+      if (seen != passes.end()) {
+        // A cycle: the discrete inequalities have no exact solution on these points (a zone boundary that falls
+        // between two of them). Keep the cycle's least violating set if its violation is a discretisation-sized
+        // fraction of the load.
+        const auto best = std::min_element(seen, passes.end(), [](const Pass& u, const Pass& v) { return u.worst < v.worst; });
+        if (best->worst > kCycleTolerance * load) break;
+        state = best->state;
+        phi = best->phi;
+        const Eigen::VectorXd kept = sigma + M_ * phi;
+        Tn = kept.head(N);
+        Tt = kept.tail(N);
+        g = Q_ * phi.head(N);
+        K_I = scale * L.dot(phi.head(N));
+        settled = true;
+      }
+    }
+    if (!settled)
+      throw ConvergenceError(fmt::format(
+          "crack face contact: the open/stick/slip set did not settle in {} passes (l = {} m, angle {}°, face "
+          "friction {}); raise max_contact_iterations or change the quadrature",
+          options_.max_contact_iterations, l, crack_.angle_deg, f));
+  }
+  r.closed = state[0] != 0;
+  r.K_I = r.closed ? 0.0 : std::max(K_I, 0.0);
+  r.K_II = scale * L.dot(phi.tail(N));
+  r.closed_fraction = double(std::count_if(state.begin(), state.end(), [](int s) { return s != 0; })) / double(N);
+
+  CrackFaces out;
+  out.sif = r;
+  if (detail) {
+    h = Q_ * phi.tail(N);
+    for (Eigen::Index k = 0; k < N; ++k) {
+      out.eta.push_back(0.5 * l * (1.0 + t_[k]));
+      out.opening.push_back(0.5 * l * g(k));
+      out.slip.push_back(0.5 * l * h(k));
+      out.pressure.push_back(state[k] == 0 ? 0.0 : -Tn(k));
+      out.shear.push_back(state[k] == 0 ? 0.0 : Tt(k));
+      out.state.push_back(state[k] == 0   ? CrackFaces::State::open
+                          : state[k] == 1 ? CrackFaces::State::stick
+                                          : CrackFaces::State::slip);
+    }
+  }
+  return out;
 }
 
-CrackSif CrackSolver::sif(double l, const Load& normal, const Load& shear) const {
+CrackFaces CrackSolver::faces(double l, const Load& normal, const Load& shear) const {
   if (!(l > 0.0)) throw InputError(fmt::format("crack length {} m: must be > 0", l));
   std::vector<double> n(t_.size()), s(t_.size());
   for (std::size_t k = 0; k < t_.size(); ++k) {
@@ -79,14 +287,19 @@ CrackSif CrackSolver::sif(double l, const Load& normal, const Load& shear) const
     n[k] = normal ? normal(eta) : 0.0;
     s[k] = shear ? shear(eta) : 0.0;
   }
-  return from_loads(l, n, s);
+  return from_loads(l, n, s, true);
+}
+
+CrackSif CrackSolver::sif(double l, const Load& normal, const Load& shear) const {
+  return faces(l, normal, shear).sif;
 }
 
 std::vector<double> CrackSolver::density(double l, const Load& load) const {
-  Eigen::VectorXd rhs(Eigen::Index(t_.size()));
-  for (std::size_t k = 0; k < t_.size(); ++k) rhs(Eigen::Index(k)) = -load(0.5 * l * (1.0 + t_[k]));
-  const Eigen::VectorXd phi = lu_.solve(rhs);
-  return {phi.data(), phi.data() + phi.size()};
+  const Eigen::Index N = Eigen::Index(t_.size());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * N);
+  for (Eigen::Index k = 0; k < N; ++k) rhs(k) = -load(0.5 * l * (1.0 + t_[k]));
+  const Eigen::VectorXd phi = open_density(rhs);
+  return {phi.data(), phi.data() + N};
 }
 
 CrackResult CrackSolver::solve(const SurfaceTractions& t, double x_c, std::span<const double> lengths) const {
@@ -97,16 +310,13 @@ CrackResult CrackSolver::solve(const SurfaceTractions& t, double x_c, std::span<
   for (double l : lengths)
     if (!(l > 0.0)) throw InputError(fmt::format("crack length {} m: must be > 0", l));
   const double l_max = *std::max_element(lengths.begin(), lengths.end());
-  const StressLine line(t, x_c, l_max, options_.table_points);
+  const StressLine line(t, x_c, l_max, options_.table_points, crack_.angle_deg);
+  const auto [c, sn] = direction(crack_.angle_deg);
   std::vector<double> n(t_.size()), s(t_.size());
   result.sifs.reserve(lengths.size());
   for (double l : lengths) {
-    for (std::size_t k = 0; k < t_.size(); ++k) {
-      const Stress sigma = line.at(0.5 * l * (1.0 + t_[k]));
-      n[k] = sigma.xx;
-      s[k] = sigma.xy;
-    }
-    result.sifs.push_back(from_loads(l, n, s));
+    for (std::size_t k = 0; k < t_.size(); ++k) std::tie(n[k], s[k]) = resolve(line.at(0.5 * l * (1.0 + t_[k])), c, sn);
+    result.sifs.push_back(from_loads(l, n, s, false).sif);
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

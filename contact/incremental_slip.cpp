@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -11,6 +14,10 @@
 #include "contact/error.hpp"
 
 namespace fretwear {
+
+namespace {
+constexpr int kMaxEvaluations = 200;  // force-control solves per displacement-controlled increment
+}  // namespace
 
 std::string IncrementalSlipOptions::validate() const {
   if (increments_per_cycle < 4 || increments_per_cycle % 4 != 0)
@@ -105,6 +112,12 @@ SolveSummary IncrementalSlipSolver::solve_increment(std::span<const double> p, d
     state.u.assign(n, 0.0);
   }
   const std::vector<double> u_prev = state.u;
+  return solve_bounded(lo, hi, inc, u_prev, state);
+}
+
+SolveSummary IncrementalSlipSolver::solve_bounded(std::span<const double> lo, std::span<const double> hi,
+                                                  const SlipIncrement& inc, std::span<const double> u_prev,
+                                                  IncrementState& state) const {
   if (inverse_spectrum_.empty()) return iterate(lo, hi, inc, u_prev, state, false);
   const SolveSummary first = iterate(lo, hi, inc, u_prev, state, true);
   if (first.converged() || first.termination == Termination::no_admissible_cell) return first;
@@ -211,6 +224,7 @@ SolveSummary IncrementalSlipSolver::iterate(std::span<const double> lo, std::spa
         if (q[i] >= hi[i]) state.dw[i] = std::max(-g[i], 0.0);
         else if (q[i] <= lo[i]) state.dw[i] = std::min(-g[i], 0.0);
       }
+      state.shift = lambda;
       return finish(Termination::converged);
     }
     if (it >= options_.max_iterations) return finish(Termination::max_iterations);
@@ -287,13 +301,18 @@ std::vector<double> stick_margin(std::span<const double> hi, std::span<const dou
 
 }  // namespace
 
-IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, const CyclicLoad& load) const {
+IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, const CyclicLoad& load,
+                                               const ReferenceDatum* datum) const {
   const Grid& grid = kernel_.grid();
   const int n = grid.n;
   const double h = grid.h();
   const double f = load.f, P = load.P, Q = load.Q_max;
+  const bool displacement = load.delta > 0.0;
+  if (!load.history.empty()) throw InputError("incremental slip: a load history is solved by solve_history()");
+  if (displacement && !datum)
+    throw InputError("incremental slip: displacement control needs a reference datum (the δ it prescribes)");
   IncrementalResult result;
-  if (Q >= f * P) {
+  if (!displacement && Q >= f * P) {
     CycleResult r;
     r.regime = Regime::gross_slip;
     r.message = fmt::format("Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and under force control the "
@@ -304,42 +323,171 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
   }
 
   const std::vector<double>& p = contact.p;
-  std::vector<double> hi(n);
-  for (int i = 0; i < n; ++i) hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
+  std::vector<double> lo(n), hi(n);
+  double capacity = 0.0;  // f P on the grid, summed as iterate() sums it
+  for (int i = 0; i < n; ++i) {
+    hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
+    lo[i] = -hi[i];
+    if (hi[i] > 0.0) capacity += h * hi[i];
+  }
   const std::vector<double> no_corners(n, 0.0);  // a stick zone never ends at a corner of the pad
   const int m = options_.increments_per_cycle;
-  auto strain_at = [&](double Qt) { return Q > 0.0 ? load.bulk_strain * Qt / Q : 0.0; };
+  // The controlled quantity x (Q, or δ under displacement control) cycles 0 → +X → −X → +X; the bulk strain follows it.
+  const double X = displacement ? load.delta : Q;
+  auto strain_at = [&](double x) { return X > 0.0 ? load.bulk_strain * x / X : 0.0; };
 
   IncrementState state;
-  double Q_prev = 0.0;
-  auto step = [&](double Qt, int cycle, int k) {
-    const SlipIncrement inc{Qt, Q_prev, strain_at(Qt), strain_at(Q_prev)};
-    const SolveSummary s = solve_increment(p, f, inc, state);
+  state.q.assign(n, 0.0);
+  state.u.assign(n, 0.0);
+  double Q_prev = 0.0, x_prev = 0.0, extra = 0.0;
+  // The fretting loop: λ summed over the increments, and δ = λ + D(q, p) − D(0, p) − ε x_c at each increment's end.
+  double shift = 0.0;
+  const double D0 = datum ? datum->relative_displacement(std::vector<double>(n, 0.0), p) : 0.0;
+  auto delta_now = [&](double x) {
+    return shift + datum->relative_displacement(state.q, p) - D0 - strain_at(x) * datum->x_c();
+  };
+  std::vector<LoopPoint> first_loading;
+  if (datum) first_loading.push_back({P, 0.0, 0.0});
+  auto where = [&](int cycle, int k) {
+    const std::string when = cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle);
+    return fmt::format("{} increment {}", when, k);
+  };
+  auto check = [&](const SolveSummary& s, int cycle, int k, double Qt) {
+    if (!s.converged())
+      throw ConvergenceError(fmt::format(
+          "incremental slip: {} (Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} iterations with residual {:.3g} "
+          "above the tolerance {:.3g}",
+          where(cycle, k), Q_prev, Qt, to_string(s.termination), s.iterations, s.residual, options_.tolerance));
+  };
+  double compliance = kernel_.A();  // dδ/dQ of the last increment (m²/N): the first guess of the next one's Q
+
+  // Displacement control: the increment of force control whose Q gives δ(Q) = x_t. δ(Q) is continuous and
+  // increasing (the tangential compliance is positive), so a bracket and the Illinois false position find it; past
+  // ±f P (every cell at ±f p) the bodies slide rigidly by the rest (`extra`).
+  auto displacement_increment = [&](double x_t, int cycle, int k) {
+    const IncrementState start = state;
+    IncrementState trial = state;
+    const double eps_t = strain_at(x_t), eps_0 = strain_at(x_prev);
+    const double tol = 10.0 * options_.tolerance * std::abs(x_t - x_prev);
+    SolveSummary total;
+    int evaluations = 0;
+    double last = 0.0;
+    auto evaluate = [&](double Qe) {
+      last = Qe;
+      trial.q = state.q;  // warm start: the last evaluation (q and u = K q agree)
+      trial.u = state.u;
+      const SolveSummary s = solve_bounded(lo, hi, {Qe, Q_prev, eps_t, eps_0}, start.u, trial);
+      total.iterations += s.iterations;
+      total.seconds += s.seconds;
+      total.residual = std::max(total.residual, s.residual);
+      total.termination = s.termination;
+      check(s, cycle, k, Qe);
+      if (++evaluations > kMaxEvaluations)
+        throw ConvergenceError(fmt::format("incremental slip: {} (δ from {:.6g} to {:.6g} m): no Q found in {} "
+                                           "solves",
+                                           where(cycle, k), x_prev, x_t, kMaxEvaluations));
+      state = trial;
+      return shift + trial.shift + datum->relative_displacement(trial.q, p) - D0 - eps_t * datum->x_c() - x_t;
+    };
+    auto at_bound = [&](double Qb, double fb) {  // Q = ±f P and δ still short of x_t: rigid sliding
+      extra = -fb;
+      for (int i = 0; i < n; ++i)
+        if (hi[i] > 0.0) state.dw[i] += extra;
+      return Qb;
+    };
+    double Qt = std::clamp(Q_prev + (x_t - x_prev) / compliance, -capacity, capacity);
+    double ft = evaluate(Qt);
+    if (std::abs(ft) <= tol) return std::pair(Qt, total);
+    // Bracket: a with f < 0, b with f > 0.
+    double a = Qt, fa = ft, b = Qt, fb = ft;
+    double step = std::max(std::abs(ft) / compliance, 1e-6 * capacity);
+    while (fa > 0.0) {
+      if (a == -capacity) return std::pair(at_bound(a, fa), total);
+      b = a, fb = fa;
+      a = std::max(a - step, -capacity);
+      fa = evaluate(a);
+      step *= 2.0;
+    }
+    while (fb < 0.0) {
+      if (b == capacity) return std::pair(at_bound(b, fb), total);
+      a = b, fa = fb;
+      b = std::min(b + step, capacity);
+      fb = evaluate(b);
+      step *= 2.0;
+    }
+    auto accept = [&](double Qa) {  // state holds the last evaluation; an end accepted otherwise is solved again
+      if (Qa != last) evaluate(Qa);
+      return std::pair(Qa, total);
+    };
+    if (std::abs(fa) <= tol) return accept(a);
+    if (std::abs(fb) <= tol) return accept(b);
+    int side = 0;  // Illinois: halve the retained end's value when the same end is kept twice
+    for (;;) {
+      Qt = (a * fb - b * fa) / (fb - fa);
+      if (!(Qt > a && Qt < b)) Qt = 0.5 * (a + b);
+      ft = evaluate(Qt);
+      if (std::abs(ft) <= tol || b - a <= 1e-14 * capacity) return std::pair(Qt, total);
+      if (ft < 0.0) {
+        a = Qt, fa = ft;
+        if (side == -1) fb *= 0.5;
+        side = -1;
+      } else {
+        b = Qt, fb = ft;
+        if (side == 1) fa *= 0.5;
+        side = 1;
+      }
+    }
+  };
+
+  auto step = [&](double x_t, int cycle, int k) {
+    SolveSummary s;
+    double Qt = x_t;
+    extra = 0.0;
+    if (displacement) {
+      const double delta_prev = delta_now(x_prev);
+      std::tie(Qt, s) = displacement_increment(x_t, cycle, k);
+      const double dQ = Qt - Q_prev;
+      if (extra == 0.0 && dQ != 0.0 && (x_t - delta_prev) / dQ > 0.0) compliance = (x_t - delta_prev) / dQ;
+    } else {
+      s = solve_increment(p, f, {Qt, Q_prev, strain_at(Qt), strain_at(Q_prev)}, state);
+      check(s, cycle, k, Qt);
+    }
     ++result.n_increments;
     result.n_iterations += s.iterations;
     if (!(s.residual <= result.worst.residual) || result.n_increments == 1) result.worst = s;
-    if (!s.converged())
-      throw ConvergenceError(fmt::format(
-          "incremental slip: {} increment {} (Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} iterations with "
-          "residual {:.3g} above the tolerance {:.3g}",
-          cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle), k, Q_prev, Qt,
-          to_string(s.termination), s.iterations, s.residual, options_.tolerance));
     Q_prev = Qt;
+    x_prev = x_t;
+    shift += state.shift + extra;
     return s;
   };
+  auto loop_point = [&]() { return LoopPoint{P, Q_prev, delta_now(x_prev)}; };
 
-  // The first loading, 0 → Q, in a quarter of a cycle's increments.
-  for (int k = 1; k <= m / 4; ++k) step(Q * (4.0 * k / m), 0, k);
+  // The first loading, 0 → X, in a quarter of a cycle's increments.
+  for (int k = 1; k <= m / 4; ++k) {
+    step(X * (4.0 * k / m), 0, k);
+    if (datum) first_loading.push_back(loop_point());
+  }
 
   for (int cycle = 1; cycle <= options_.cycles; ++cycle) {
     CycleResult r;
     std::vector<double> w(n, 0.0), w_min(n, 0.0), w_max(n, 0.0);
     r.slip_travelled.assign(n, 0.0);
     r.energy_density.assign(n, 0.0);
+    if (datum) {
+      r.first_loading = first_loading;
+      r.loop.push_back(loop_point());
+    }
+    double sliding = 0.0, Q_peak = std::abs(Q_prev);
     for (int j = 1; j <= m; ++j) {
-      // +Q → −Q over the first half, −Q → +Q over the second; 0, −Q, 0 and +Q fall exactly on increment ends.
-      const double Qt = 2 * j <= m ? Q * (1.0 - 4.0 * j / m) : Q * (-1.0 + 4.0 * (j - m / 2) / m);
-      r.solves.push_back(step(Qt, cycle, j));
+      // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
+      const double xt = 2 * j <= m ? X * (1.0 - 4.0 * j / m) : X * (-1.0 + 4.0 * (j - m / 2) / m);
+      r.solves.push_back(step(xt, cycle, j));
+      sliding += std::abs(extra);
+      Q_peak = std::max(Q_peak, std::abs(Q_prev));
+      if (datum) {
+        r.loop.push_back(loop_point());
+        r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
+      }
       for (int i = 0; i < n; ++i) {
         const double dw = state.dw[i];
         if (dw == 0.0) continue;
@@ -354,6 +502,7 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
       if (4 * j == 3 * m) r.q_reloaded = state.q;
     }
     r.q_top = state.q;
+    r.Q_peak = Q_peak;
     r.slip_range.assign(n, 0.0);
     for (int i = 0; i < n; ++i) {
       r.slip_range[i] = w_max[i] - w_min[i];
@@ -373,11 +522,208 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
     double x_backward = 0.0;
     for (int i = 0; i < n; ++i)
       if (hi[i] > 0.0 && r.q_top[i] <= -hi[i]) x_backward = n_backward++ == 0 ? grid.x(i) : x_backward;
-    if (n_backward > 0) {
+    if (sliding > 0.0) {
+      // Displacement control past the stick limit: the bodies slide rigidly by sliding/2 each half cycle.
+      r.regime = Regime::gross_slip;
+      r.sliding_amplitude = 0.25 * sliding;
+      r.message = fmt::format("Q reaches f P = {:.6g} N/m and the bodies slide {:.6g} m each way beyond the stick "
+                              "limit (sliding amplitude {:.6g} m at delta = {:.6g} m)",
+                              capacity, 0.5 * sliding, r.sliding_amplitude, X);
+      r.stick_zone.reset();
+    } else if (n_backward > 0) {
       r.regime = Regime::reverse_slip;
       r.message = fmt::format("at the top of the cycle {} cells from x = {:.6g} m sit at q = -f p: the leading edge "
                               "slips backwards (reverse slip)",
                               n_backward, x_backward);
+    }
+    result.cycles.push_back(std::move(r));
+  }
+  return result;
+}
+
+IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& contact, const CyclicLoad& load,
+                                                       std::span<const double> g0, const ReferenceDatum* datum) const {
+  const Grid& grid = kernel_.grid();
+  const int n = grid.n;
+  const double h = grid.h();
+  const double f = load.f;
+  const auto& H = load.history;
+  if (H.size() < 2 || int(g0.size()) != n)
+    throw InputError("incremental slip: a load history needs two points or more and the initial gap on the grid");
+  IncrementalResult result;
+  const int m = options_.increments_per_cycle;
+
+  // The increments: the first loading from (P of the contact, 0, 0) to the first point, then each segment of the
+  // history split into ⌈m Δt / T⌉ equal steps.
+  struct Target {
+    double P, Q, eps;
+  };
+  std::vector<Target> first, cycle_targets;
+  double P0 = 0.0;
+  for (double pi : contact.p) P0 += h * pi;
+  for (int k = 1; k <= m / 4; ++k) {
+    const double s = 4.0 * k / m;
+    first.push_back({P0 + s * (H[0].P - P0), s * H[0].Q, s * H[0].bulk_strain});
+  }
+  const double T = H.back().t - H.front().t;
+  for (std::size_t j = 1; j < H.size(); ++j) {
+    const int steps = std::max(1, int(std::ceil(m * (H[j].t - H[j - 1].t) / T - 1e-9)));
+    for (int k = 1; k <= steps; ++k) {
+      const double s = double(k) / steps;
+      cycle_targets.push_back({H[j - 1].P + s * (H[j].P - H[j - 1].P), H[j - 1].Q + s * (H[j].Q - H[j - 1].Q),
+                               H[j - 1].bulk_strain + s * (H[j].bulk_strain - H[j - 1].bulk_strain)});
+    }
+  }
+
+  // The pressure at each distinct P: one normal solve each, warm-started from the nearest P solved.
+  const NormalSolver normal(kernel_);
+  std::map<double, std::vector<double>> pressures;
+  pressures[P0] = contact.p;
+  auto pressure_at = [&](double P) -> const std::vector<double>& {
+    if (auto it = pressures.find(P); it != pressures.end()) return it->second;
+    auto near = pressures.lower_bound(P);
+    if (near == pressures.end() || (near != pressures.begin() && P - std::prev(near)->first < near->first - P))
+      near = std::prev(near);
+    ContactState state;
+    state.p = near->second;
+    const SolveSummary s = normal.solve(g0, P, state);
+    if (!s.converged())
+      throw ConvergenceError(fmt::format("incremental slip: the normal solve at P = {:.6g} N/m of the load history "
+                                         "stopped ({}) with residual {:.3g}",
+                                         P, to_string(s.termination), s.residual));
+    return pressures[P] = std::move(state.p);
+  };
+  auto bounds = [&](double P, std::vector<double>& lo, std::vector<double>& hi) {
+    const std::vector<double>& p = pressure_at(P);
+    double capacity = 0.0;
+    for (int i = 0; i < n; ++i) {
+      hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
+      lo[i] = -hi[i];
+      capacity += h * hi[i];
+    }
+    return capacity;
+  };
+  // Gross slip anywhere in the history: as under force control, the slip is not determined.
+  {
+    for (const HistoryPoint& pt : H) {
+      if (std::abs(pt.Q) >= f * pt.P) {
+        CycleResult r;
+        r.regime = Regime::gross_slip;
+        r.message = fmt::format("the load history reaches |Q| = {:.6g} N/m >= f P = {:.6g} N/m at t = {:.6g}: the "
+                                "bodies slide, and under force control the slip is not determined",
+                                std::abs(pt.Q), f * pt.P, pt.t);
+        result.cycles.push_back(std::move(r));
+        return result;
+      }
+    }
+  }
+
+  IncrementState state;
+  state.q.assign(n, 0.0);
+  state.u.assign(n, 0.0);
+  std::vector<double> lo(n), hi(n), p_now = contact.p;
+  Target prev{P0, 0.0, 0.0};
+  double shift = 0.0;
+  const double D0 = datum ? datum->relative_displacement(std::vector<double>(n, 0.0), contact.p) : 0.0;
+  auto delta_now = [&]() {
+    return shift + datum->relative_displacement(state.q, p_now) - D0 - prev.eps * datum->x_c();
+  };
+  auto step = [&](const Target& t, int cycle, int k) {
+    bounds(t.P, lo, hi);
+    p_now = pressure_at(t.P);
+    const std::vector<double> u_prev = state.u;
+    bool dropped = false;  // cells that separate drop their traction within the increment
+    for (int i = 0; i < n; ++i)
+      if (hi[i] == 0.0 && state.q[i] != 0.0) state.q[i] = 0.0, dropped = true;
+    if (dropped) kernel_.apply(state.q, state.u);
+    const SolveSummary s = solve_bounded(lo, hi, {t.Q, prev.Q, t.eps, prev.eps}, u_prev, state);
+    ++result.n_increments;
+    result.n_iterations += s.iterations;
+    if (!(s.residual <= result.worst.residual) || result.n_increments == 1) result.worst = s;
+    if (!s.converged())
+      throw ConvergenceError(fmt::format(
+          "incremental slip: {} increment {} of the load history (P {:.6g}, Q from {:.6g} to {:.6g} N/m) stopped "
+          "({}) after {} iterations with residual {:.3g} above the tolerance {:.3g}",
+          cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle), k, t.P, prev.Q, t.Q,
+          to_string(s.termination), s.iterations, s.residual, options_.tolerance));
+    prev = t;
+    shift += state.shift;
+    return s;
+  };
+
+  std::vector<LoopPoint> first_loading;
+  if (datum) first_loading.push_back({P0, 0.0, 0.0});
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    step(first[k], 0, int(k) + 1);
+    if (datum) first_loading.push_back({prev.P, prev.Q, delta_now()});
+  }
+
+  // The phases: top and bottom at the largest and smallest Q; unloaded and reloaded where Q first crosses their
+  // mean after each.
+  int j_top = 0, j_bottom = 0;
+  for (std::size_t j = 0; j < cycle_targets.size(); ++j) {
+    if (cycle_targets[j].Q > cycle_targets[j_top].Q) j_top = int(j);
+    if (cycle_targets[j].Q < cycle_targets[j_bottom].Q) j_bottom = int(j);
+  }
+  const double Q_mid = 0.5 * (cycle_targets[j_top].Q + cycle_targets[j_bottom].Q);
+  const int n_targets = int(cycle_targets.size());
+  auto crossing = [&](int from, bool down) {
+    for (int k = 1; k <= n_targets; ++k) {
+      const int j = (from + k) % n_targets;
+      if (down ? cycle_targets[j].Q <= Q_mid : cycle_targets[j].Q >= Q_mid) return j;
+    }
+    return from;
+  };
+  const int j_unloaded = crossing(j_top, true), j_reloaded = crossing(j_bottom, false);
+  const std::vector<double> no_corners(n, 0.0);
+
+  for (int cycle = 1; cycle <= options_.cycles; ++cycle) {
+    CycleResult r;
+    std::vector<double> w(n, 0.0), w_min(n, 0.0), w_max(n, 0.0), hi_top, hi_unloaded;
+    r.slip_travelled.assign(n, 0.0);
+    r.energy_density.assign(n, 0.0);
+    if (datum) {
+      r.first_loading = first_loading;
+      r.loop.push_back({prev.P, prev.Q, delta_now()});
+    }
+    for (int j = 0; j < n_targets; ++j) {
+      r.solves.push_back(step(cycle_targets[j], cycle, j + 1));
+      r.Q_peak = std::max(r.Q_peak, std::abs(prev.Q));
+      if (datum) {
+        r.loop.push_back({prev.P, prev.Q, delta_now()});
+        r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
+      }
+      for (int i = 0; i < n; ++i) {
+        const double dw = state.dw[i];
+        if (dw == 0.0) continue;
+        w[i] += dw;
+        w_min[i] = std::min(w_min[i], w[i]);
+        w_max[i] = std::max(w_max[i], w[i]);
+        r.slip_travelled[i] += std::abs(dw);
+        r.energy_density[i] += state.q[i] * dw;
+      }
+      if (j == j_top) r.q_top = state.q, hi_top = hi;
+      if (j == j_bottom) r.q_bottom = state.q;
+      if (j == j_unloaded) r.q_unloaded = state.q, hi_unloaded = hi;
+      if (j == j_reloaded) r.q_reloaded = state.q;
+    }
+    r.slip_range.assign(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+      r.slip_range[i] = w_max[i] - w_min[i];
+      r.slip_max = std::max(r.slip_max, r.slip_range[i]);
+      r.dissipated_energy += h * r.energy_density[i];
+    }
+    const auto stick = locate_zones(grid, stick_margin(hi_top, r.q_top), no_corners);
+    for (const Zone& z : stick) r.stick_zones.emplace_back(z.left.x, z.right.x);
+    if (!stick.empty()) r.stick_zone = Interval{stick.front().left.x, stick.back().right.x};
+    const auto stick_unloaded = locate_zones(grid, stick_margin(hi_unloaded, r.q_unloaded), no_corners);
+    if (!stick_unloaded.empty())
+      r.stick_zone_unloaded = Interval{stick_unloaded.front().left.x, stick_unloaded.back().right.x};
+    int n_backward = 0;
+    for (int i = 0; i < n; ++i) n_backward += hi_top[i] > 0.0 && r.q_top[i] <= -hi_top[i];
+    if (n_backward > 0) {
+      r.regime = Regime::reverse_slip;
+      r.message = fmt::format("at the top of the cycle {} cells sit at q = -f p (reverse slip)", n_backward);
     }
     result.cycles.push_back(std::move(r));
   }

@@ -36,15 +36,41 @@
 // range is max w − min w over the cycle, the slip travelled Σ |Δw|, the energy density Σ q Δw (q at the end of the
 // increment, at ±f p where Δw ≠ 0, so every term is f p |Δw| ≥ 0; a bound cell whose Δw has the wrong sign by less
 // than the tolerance is counted as sticking).
+//
+// The fretting loop: given a ReferenceDatum the solver records, at the end of every increment, δ = λ + D(q, p) −
+// D(0, p) − ε x_c (contact/reference_datum.hpp), λ the rigid shift summed over the increments (the multiplier above).
+//
+// Displacement control (CyclicLoad::delta > 0; needs the datum): δ cycles 0 → +δ → −δ → +δ and the bulk strain follows
+// it. Prescribing δ instead of Q replaces the load constraint by δ = λ + D(q, p) − …, whose weights are not uniform
+// over the cells, so the KKT system is no longer that of a symmetric program; instead each increment solves the
+// force-controlled program above for the Q whose δ(Q) is the target. From a given state δ(Q) is continuous and
+// increasing (its slope is the tangential compliance, positive for any d > 0), so a bracket grown from the secant
+// guess Q_prev + Δδ/(last compliance) and the Illinois false position find it, warm-started from evaluation to
+// evaluation (three to six solves an increment), to |δ(Q) − target| ≤ 10 · tolerance · |Δδ|. The bracket ends at
+// Q = ±f P, where every cell is at ±f p and λ is the smallest shift that keeps them there (the stick limit): if δ
+// still falls short there, the bodies slide rigidly by the rest, which is added to the slip of every contact cell,
+// and the cycle is in gross slip with CycleResult::sliding_amplitude = (rigid sliding per cycle)/4.
+//
+// A load history (CyclicLoad::history, force control): the cycle runs through the points [t, P, Q, ε] (the last
+// repeats the first) and is repeated; increments end at every point, and each segment is split into
+// ⌈m Δt/T⌉ ≥ 1 equal steps (m = increments_per_cycle, T the period); the first loading goes from Q = 0, ε = 0 under
+// the contact's P to the first point in m/4 steps. For β = 0 the pressure at an increment is the normal solution at
+// its P (one constrained-CG solve per distinct P, warm-started from the nearest P solved): the bounds ±f p change,
+// cells that separate drop their traction (the drop is part of the increment's Δq), and q at a cell above its new
+// bound is clamped by the projection, after which the KKT signs say whether it slips. |Q| ≥ f P at any increment is
+// gross slip, reported without fields as under force control. The phases: top and bottom at the largest and the
+// smallest Q, "unloaded" and "reloaded" where Q first crosses their mean after the top and after the bottom.
 #pragma once
 
 #include <complex>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "contact/half_plane_kernel.hpp"
 #include "contact/normal_solver.hpp"
+#include "contact/reference_datum.hpp"
 #include "contact/tangential_solver.hpp"
 
 namespace fretwear {
@@ -76,6 +102,7 @@ struct IncrementState {
   std::vector<double> q;      // shear traction per cell (Pa)
   std::vector<double> u;      // K q per cell (m), carried to the next increment
   std::vector<double> dw;     // slip increment per cell (m)
+  double shift = 0.0;         // λ of the increment: the rigid shift of the pad relative to the specimen (m)
 };
 
 struct IncrementalResult {
@@ -91,9 +118,15 @@ class IncrementalSlipSolver {
   IncrementalSlipSolver(const HalfPlaneKernel& kernel, IncrementalSlipOptions options = {});
 
   // The cycles of `load` on the normal solution `contact` (its p is fixed: β = 0, constant P). Q_max ≥ f P returns one
-  // cycle in the gross_slip regime with no fields, as the analogy route does. Throws ConvergenceError naming the
-  // cycle, the increment, Q and the residual if an increment does not converge.
-  IncrementalResult solve(const ContactState& contact, const CyclicLoad& load) const;
+  // cycle in the gross_slip regime with no fields, as the analogy route does. With a datum (it must outlive the
+  // call) each cycle carries its fretting loop. Throws ConvergenceError naming the cycle, the increment, Q and the
+  // residual if an increment does not converge.
+  IncrementalResult solve(const ContactState& contact, const CyclicLoad& load,
+                          const ReferenceDatum* datum = nullptr) const;
+  // A load history (load.history non-empty; see the header): g0 is the initial gap per cell, for the normal solves
+  // at each distinct P(t), warm-started; `contact` is the normal solution under load.P, where the first loading starts.
+  IncrementalResult solve_history(const ContactState& contact, const CyclicLoad& load, std::span<const double> g0,
+                                  const ReferenceDatum* datum = nullptr) const;
 
   // One increment from `state` (q and u = K q of the previous increment, or empty for q = 0). p: the pressure per
   // cell (Pa); f the friction coefficient. Needs Σ f p h ≥ |Q|.
@@ -103,6 +136,9 @@ class IncrementalSlipSolver {
   const IncrementalSlipOptions& options() const { return options_; }
 
  private:
+  // solve_increment with the bounds given and the previous increment's K q in u_prev (state.q: the start).
+  SolveSummary solve_bounded(std::span<const double> lo, std::span<const double> hi, const SlipIncrement& inc,
+                             std::span<const double> u_prev, IncrementState& state) const;
   SolveSummary iterate(std::span<const double> lo, std::span<const double> hi, const SlipIncrement& inc,
                        std::span<const double> u_prev, IncrementState& state, bool use_preconditioner) const;
   const HalfPlaneKernel& kernel_;

@@ -30,8 +30,8 @@ std::vector<Jump> jumps(const SurfaceTractions& t) {
 }
 
 // Σ_b [Δp_b F + Δq_b G] at (x, y) (header), and its y-derivative when ds is given, without σ_bulk.
-Stress sum_over_jumps(const std::vector<Jump>& J, double x, double y, Stress* ds) {
-  double xx = 0.0, yy = 0.0, xy = 0.0, dxx = 0.0, dyy = 0.0, dxy = 0.0;
+Stress sum_over_jumps(const std::vector<Jump>& J, double x, double y, Stress* ds, Stress* dsx = nullptr) {
+  double xx = 0.0, yy = 0.0, xy = 0.0, dxx = 0.0, dyy = 0.0, dxy = 0.0, exx = 0.0, eyy = 0.0, exy = 0.0;
   for (const Jump& j : J) {
     const double X = x - j.xi, r2 = X * X + y * y;
     double theta = 0.0, Xy = 0.0, X2 = 1.0, y2 = 0.0, ln_r2 = 0.0, inv = 0.0;
@@ -54,9 +54,18 @@ Stress sum_over_jumps(const std::vector<Jump>& J, double x, double y, Stress* ds
       dyy += j.dp * (d_theta + d_Xy) + j.dq * d_X2;
       dxy += j.dp * d_X2 + j.dq * (d_theta - d_Xy);
     }
+    if (dsx) {  // ∂/∂x = ∂/∂X
+      const double inv2 = inv * inv;
+      const double e_theta = y * inv, e_Xy = y * (y * y - X * X) * inv2, e_X2 = 2.0 * X * y * y * inv2;
+      const double e_ln = 2.0 * X * inv, e_y2 = -2.0 * X * y * y * inv2;
+      exx += j.dp * (e_theta - e_Xy) + j.dq * (e_ln + e_y2);
+      eyy += j.dp * (e_theta + e_Xy) + j.dq * e_X2;
+      exy += j.dp * e_X2 + j.dq * (e_theta - e_Xy);
+    }
   }
   constexpr double c = -1.0 / kPi;
   if (ds) *ds = {c * dxx, c * dyy, c * dxy};
+  if (dsx) *dsx = {c * exx, c * eyy, c * exy};
   return {c * xx, c * yy, c * xy};
 }
 
@@ -80,17 +89,27 @@ std::vector<Stress> stress_along_depth(const SurfaceTractions& t, double x, std:
   return out;
 }
 
-StressLine::StressLine(const SurfaceTractions& t, double x, double y_max, int M)
-    : x_(x), y_(std::size_t(M) + 1), s_(y_.size()), ds_(y_.size()) {
-  assert(M >= 1 && y_max > 0.0);
+StressLine::StressLine(const SurfaceTractions& t, double x, double y_max, int M) : StressLine(t, x, y_max, M, 90.0) {}
+
+StressLine::StressLine(const SurfaceTractions& t, double x, double length, int M, double angle_deg)
+    : x_(x), angle_deg_(angle_deg), y_(std::size_t(M) + 1), s_(y_.size()), ds_(y_.size()) {
+  assert(M >= 1 && length > 0.0 && angle_deg > 0.0 && angle_deg < 180.0);
+  // Direction (cos α, sin α), exact at α = 90° (the depth line of the first constructor).
+  const double c = std::sin((90.0 - angle_deg) * kPi / 180.0), s = std::cos((90.0 - angle_deg) * kPi / 180.0);
   const std::vector<Jump> J = jumps(t);
   for (int j = 0; j <= M; ++j) {
     const double u = double(j) / M;
-    y_[j] = y_max * u * u;
-    s_[j] = sum_over_jumps(J, x, y_[j], &ds_[j]);
+    y_[j] = length * u * u;
+    if (c == 0.0) {
+      s_[j] = sum_over_jumps(J, x, y_[j], &ds_[j]);
+    } else {
+      Stress dy, dx;
+      s_[j] = sum_over_jumps(J, x + c * y_[j], s * y_[j], &dy, &dx);
+      ds_[j] = {c * dx.xx + s * dy.xx, c * dx.yy + s * dy.yy, c * dx.xy + s * dy.xy};
+    }
     s_[j].xx += t.sigma_bulk;
   }
-  y_.back() = y_max;
+  y_.back() = length;
 }
 
 Stress StressLine::at(double y) const {

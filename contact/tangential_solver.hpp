@@ -29,14 +29,36 @@ namespace fretwear {
 enum class Regime { partial_slip, reverse_slip, gross_slip };
 std::string to_string(Regime r);
 
+// One point of a load history (load.history): the cycle as points, repeated.
+struct HistoryPoint {
+  double t = 0.0;            // time (s): orders the points and shares the increments among the segments
+  double P = 0.0;            // normal load (N/m), > 0
+  double Q = 0.0;            // tangential load (N/m)
+  double bulk_strain = 0.0;  // ε of the specimen
+};
+
 struct CyclicLoad {
   double P = 0.0;          // normal load (N/m), constant
   double Q_max = 0.0;      // tangential load at the top of the cycle (N/m), ≥ 0
   double f = 0.0;          // Coulomb friction coefficient, > 0
   double bulk_strain = 0.0;  // ε of the specimen at the top of the cycle (σ (κ₂ + 1)/(8 μ₂)), in phase with Q
+  // > 0: displacement control (incremental route only): the datum's δ cycles 0 → +δ → −δ → +δ (m), Q_max is not
+  // used and the bulk strain is in phase with δ.
+  double delta = 0.0;
+  // Non-empty: force control through these points instead (incremental route; the last point repeats the first, and
+  // P, Q_max, bulk_strain and delta are not used).
+  std::vector<HistoryPoint> history = {};
 };
 
 using Interval = std::pair<double, double>;
+
+// One point of the fretting loop: the loads at the end of an increment and the relative tangential displacement of
+// the reference points (contact/reference_datum.hpp).
+struct LoopPoint {
+  double P = 0.0;      // normal load (N/m)
+  double Q = 0.0;      // tangential load (N/m)
+  double delta = 0.0;  // δ, pad relative to specimen at the reference points (m)
+};
 
 struct CycleResult {
   Regime regime = Regime::partial_slip;
@@ -51,6 +73,12 @@ struct CycleResult {
   double slip_max = 0.0;               // largest slip range, at the contact's edges to sub-cell accuracy (m)
   std::vector<SolveSummary> solves;    // the corrective normal solves (incremental route: its increments)
   std::string message;                 // why a regime has no fields
+  // The fretting loop (incremental route with a datum): the first loading 0 → top, and this cycle, top to top.
+  std::vector<LoopPoint> first_loading, loop;
+  double delta_max = 0.0;              // the largest |δ| over this cycle (m); 0 without a datum
+  double Q_peak = 0.0;                 // the largest |Q| over this cycle (N/m; incremental route)
+  double sliding_amplitude = 0.0;      // gross slip under displacement control: the rigid sliding beyond the stick
+                                       // limit, half of what the bodies slide each half cycle (m)
 };
 
 struct TangentialSolverOptions {

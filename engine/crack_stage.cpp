@@ -9,7 +9,7 @@ std::vector<SifSet> crack_sifs(const Grid& grid, const std::vector<Phase>& phase
                                const CrackEffect& effect, double cycles) {
   CrackSolverOptions options;
   options.n_quadrature = effect.quadrature;
-  const CrackSolver solver(options);
+  const CrackSolver solver(options, CrackSpec{effect.angle_deg, effect.face_friction});
   std::vector<SifSet> out;
   for (const Phase& ph : phases) {
     const SurfaceTractions t{grid, ph.p, ph.q, ph.sigma_bulk};

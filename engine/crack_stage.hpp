@@ -16,9 +16,10 @@ namespace fretwear {
 struct CrackEffect {
   std::string at = "trailing_edge";  // "trailing_edge", "leading_edge", or "x" (then x gives the position)
   double x = 0.0;                    // m, when at == "x"
-  double angle_deg = 90.0;           // to the surface; only 90 (normal to it) is built
-  std::vector<double> lengths;       // crack depths (m)
+  double angle_deg = 90.0;           // to the surface, in [15, 165]; 90 normal to it, below 90 leaning toward +x
+  std::vector<double> lengths;       // crack lengths from the mouth to the tip (m)
   int quadrature = 60;               // Gauss–Jacobi points
+  double face_friction = 0.0;        // Coulomb coefficient between the crack faces where they touch
 };
 
 // effects.stress

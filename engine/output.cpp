@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/fatigue_stage.hpp"
 #include "engine/wear_stage.hpp"
 
 namespace fretwear {
@@ -151,11 +152,11 @@ set xrange [{}:{}]
   s += fmt::format(
       "plot 'cycle.csv' skip 1 using ($1*1e3):({0}*$2*1e-6) with lines dt 3 lc rgb '#888888' title '±f p', "
       "'' skip 1 using ($1*1e3):(-{0}*$2*1e-6) with lines dt 3 lc rgb '#888888' notitle, "
-      "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+Q)', "
-      "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded (Q = 0)', "
-      "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-Q)', "
-      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded (Q = 0)'\n",
-      f);
+      "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+{1})', "
+      "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded ({1} = 0)', "
+      "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-{1})', "
+      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({1} = 0)'\n",
+      f, scene.control == LoadControl::displacement ? "δ" : "Q");  // the phases of the controlled quantity
   const std::string traction_plot = s.substr(s.find("plot 'cycle.csv'"));
   std::string out = s.substr(0, s.find("plot 'cycle.csv'"));
   out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'traction.svg'\n" + traction_plot;
@@ -256,6 +257,43 @@ std::string svg_and_png(const std::string& stem, const std::string& plot, int wi
   return fmt::format("set terminal svg size {0},{1} dynamic font 'sans,12'\nset output '{2}.svg'\n{3}"
                      "set terminal pngcairo size {0},{1} font 'sans,11'\nset output '{2}.png'\nreplot\nunset output\n",
                      width, height, stem, plot);
+}
+
+// The fretting loop: Q against δ at the end of every increment, the first loading and then the steady cycle, top to
+// top (contact/reference_datum.hpp for the datum).
+std::string loop_csv(const CycleResult& c) {
+  std::string s = "phase,P_N_m,Q_N_m,delta_m\n";
+  for (const LoopPoint& l : c.first_loading)
+    s += fmt::format("first_loading,{},{},{}\n", num(l.P), num(l.Q), num(l.delta));
+  for (const LoopPoint& l : c.loop) s += fmt::format("cycle,{},{},{}\n", num(l.P), num(l.Q), num(l.delta));
+  return s;
+}
+
+std::string loop_plot_script(const Scene& scene, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  const std::size_t n0 = c.first_loading.size();
+  return fmt::format(R"gp(# The fretting loop. Re-run with: gnuplot loop.gp
+set datafile separator ','
+set title "{0}: fretting loop, reference points {1:.4g} mm deep" noenhanced
+set label 1 "dissipated per cycle {3:.4g} J/m\nreference points at x = {2:.4g} mm" at graph 0.97, graph 0.06 right
+set label 1 noenhanced
+set xlabel 'relative tangential displacement δ of the reference points (µm)'
+set ylabel 'tangential load Q (kN/m)'
+set grid
+set key inside left top opaque box
+set xzeroaxis lt -1 lw 0.5
+set yzeroaxis lt -1 lw 0.5
+)gp",
+                     scene.name, st.reference_depth * 1e3,
+                     std::abs(st.reference_x) < 1e-9 * st.reference_depth ? 0.0 : st.reference_x * 1e3,
+                     c.dissipated_energy) +
+         svg_and_png("loop",
+                     fmt::format("plot 'loop.csv' skip 1 every ::0::{0} using ($4*1e6):($3*1e-3) with lines lw 1.5 "
+                                 "dt 2 lc rgb '#888888' title 'first loading', '' skip 1 every ::{1} using "
+                                 "($4*1e6):($3*1e-3) with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#d62728' "
+                                 "title 'steady cycle'\n",
+                                 n0 - 1, n0),
+                     900, 640);
 }
 
 std::string sif_csv(const RunResult& r) {
@@ -497,13 +535,18 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
   json summary = make_summary(scene, result);
   Scene resolved = scene;  // the window as it was used, so that the resolved scene reproduces the run exactly
   resolved.window = std::pair(result.normal.grid.x_min, result.normal.grid.x_max);
+  if (result.cycle) resolved.reference_depth = result.cycle->reference_depth;  // the datum as it was used
   out.write_json("scene.resolved.json", resolved.to_json());
   out.write("contact.csv", contact_csv(result.normal));
   std::vector<std::string> tables{"contact.csv"};
-  const bool slips = result.cycle && result.cycle->result.regime != Regime::gross_slip;
+  const bool slips = result.cycle && !result.cycle->result.slip_range.empty();  // gross slip under force control: none
   if (slips) {
     out.write("cycle.csv", cycle_csv(result.normal, result.cycle->result));
     tables.push_back("cycle.csv");
+    if (!result.cycle->result.loop.empty()) {
+      out.write("loop.csv", loop_csv(result.cycle->result));
+      tables.push_back("loop.csv");
+    }
   }
   std::vector<std::string> plots;
   if (scene.plots) {
@@ -513,6 +556,10 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
       out.write("cycle.gp", cycle_plot_script(scene, result.normal, *result.cycle));
       if (run_gnuplot(out.path(""), "cycle.gp"))
         plots.insert(plots.end(), {"traction.svg", "traction.png", "slip.svg", "slip.png"});
+    }
+    if (slips && !result.cycle->result.loop.empty()) {
+      out.write("loop.gp", loop_plot_script(scene, *result.cycle));
+      if (run_gnuplot(out.path(""), "loop.gp")) plots.insert(plots.end(), {"loop.svg", "loop.png"});
     }
   }
   if (result.wear) {
@@ -548,6 +595,7 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
       if (run_gnuplot(out.path(""), "stress.gp"))
         plots.insert(plots.end(), {"stress_von_mises.svg", "stress_von_mises.png", "stress_sxx.svg", "stress_sxx.png"});
     }
+    if (result.fatigue) write_fatigue(scene, result, *result.fatigue, out, tables, plots);
   }
   summary["plots"] = plots;
   out.write_json("summary.json", summary);

@@ -309,7 +309,20 @@ std::string to_string(TangentialRoute r) {
   return "?";
 }
 
+std::string to_string(LoadControl c) { return c == LoadControl::force ? "force" : "displacement"; }
+
+double Scene::P_max() const {
+  double P_max = P;
+  for (const auto& pt : history) P_max = std::max(P_max, pt[1]);
+  return P_max;
+}
+
 double Scene::Q_max() const {
+  if (!history.empty()) {
+    double Q = 0.0;
+    for (const auto& pt : history) Q = std::max(Q, std::abs(pt[2]));
+    return Q;
+  }
   if (Q_amplitude) return *Q_amplitude;
   if (Q_ratio && friction) return *Q_ratio * *friction * P;
   return 0.0;
@@ -367,6 +380,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     s.friction = top.number("friction", std::nullopt,
                             {[](double v) { return v > 0.0 && v <= 10.0; }, "a friction coefficient in (0, 10]"});
 
+  bool history_given = false;  // even when invalid: then load.Q is not asked for
   if (const json* l = top.object("load", true)) {
     Reader r(*l, "load", problems);
     s.P = r.number("P", std::nullopt, {[](double v) { return v > 0.0; }, "a normal load > 0 N/m"}).value_or(1.0);
@@ -389,9 +403,66 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       s.bulk_stress = rb.number("amplitude", 0.0).value_or(0.0);
       rb.finish();
     }
-    r.finish({{"history", "load histories arrive with the cyclic partial-slip issue"},
-              {"control", "displacement control arrives with the cyclic partial-slip issue"},
-              {"delta", "displacement control arrives with the cyclic partial-slip issue"}});
+    if (auto control = r.string("control", "force", "\"force\" or \"displacement\"")) {
+      if (*control == "force") {
+        s.control = LoadControl::force;
+      } else if (*control == "displacement") {
+        s.control = LoadControl::displacement;
+      } else {
+        r.problem("load.control",
+                  fmt::format("\"{}\" is not a load control; use \"force\" or \"displacement\"", *control));
+      }
+    }
+    if (r.find("delta"))
+      s.delta = r.number("delta", std::nullopt,
+                         {[](double v) { return v > 0.0 && v < 1.0; }, "a displacement amplitude in (0, 1) m"});
+    if (const json* hv = r.find("history")) {
+      history_given = true;
+      const std::string what = "give a list of at least two points [t, P, Q, sigma_bulk] (s, N/m, N/m, Pa)";
+      if (!hv->is_array() || hv->size() < 2) {
+        r.problem("load.history", fmt::format("{} is not {}; {}", describe(*hv),
+                                              hv->is_array() ? "long enough" : "a list", what));
+      } else {
+        for (std::size_t i = 0; i < hv->size(); ++i) {
+          const json& pt = (*hv)[i];
+          const std::string at = fmt::format("load.history[{}]", i);
+          const bool numbers = pt.is_array() && pt.size() == 4 && std::all_of(pt.begin(), pt.end(), [](const json& v) {
+            return v.is_number() && std::isfinite(v.get<double>());
+          });
+          if (!numbers) {
+            r.problem(at, fmt::format("{} is not a point [t, P, Q, sigma_bulk] of four finite numbers", describe(pt)));
+            s.history.clear();
+            break;
+          }
+          const std::array<double, 4> v{pt[0].get<double>(), pt[1].get<double>(), pt[2].get<double>(),
+                                        pt[3].get<double>()};
+          if (!(v[1] > 0.0)) {
+            r.problem(at, fmt::format("P = {} is not allowed; give a normal load > 0 N/m", v[1]));
+            s.history.clear();
+            break;
+          }
+          if (!s.history.empty() && !(v[0] > s.history.back()[0])) {
+            r.problem(at, fmt::format("t = {} does not exceed the previous {}; t must increase strictly", v[0],
+                                      s.history.back()[0]));
+            s.history.clear();
+            break;
+          }
+          s.history.push_back(v);
+        }
+        if (!s.history.empty()) {
+          const auto& a = s.history.front();
+          const auto& b = s.history.back();
+          if (a[1] != b[1] || a[2] != b[2] || a[3] != b[3]) {
+            r.problem(fmt::format("load.history[{}]", s.history.size() - 1),
+                      fmt::format("ends the cycle at P, Q, sigma_bulk = {}, {}, {}, not where it starts ({}, {}, {}); "
+                                  "a cycle closes: repeat the first point's P, Q and sigma_bulk at the end",
+                                  b[1], b[2], b[3], a[1], a[2], a[3]));
+            s.history.clear();
+          }
+        }
+      }
+    }
+    r.finish();
   }
 
   if (const json* g = top.object("grid", false)) {
@@ -419,7 +490,10 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         s.window = std::pair((*w)[0].get<double>(), (*w)[1].get<double>());
       }
     }
-    r.finish({{"reference_depth", "displacement datums arrive with the cyclic partial-slip issue"}});
+    if (r.find("reference_depth"))
+      s.reference_depth = r.number("reference_depth", std::nullopt,
+                                   {[](double v) { return v > 0.0; }, "a depth > 0 m below the contact centre"});
+    r.finish();
   }
 
   if (const json* e = top.object("effects", false)) {
@@ -529,16 +603,16 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                                      "a position x (m)", describe(*at)));
         }
       }
-      effect.angle_deg = rc.number("angle_deg", 90.0, {[](double v) { return v > 0.0 && v < 180.0; }, "an angle in (0, 180) degrees"})
+      // Flatter cracks than CrackSpec::kMinAngle lie close to the surface over their whole length, where the
+      // quadrature converges too slowly to trust (contact/crack_solver.hpp).
+      constexpr double lo = CrackSpec::kMinAngle, hi = 180.0 - CrackSpec::kMinAngle;
+      effect.angle_deg = rc.number("angle_deg", 90.0,
+                                   {[](double v) { return v >= lo && v <= hi; },
+                                    fmt::format("an angle to the surface in [{}, {}] degrees (90: normal to it)", lo, hi)})
                              .value_or(90.0);
-      if (effect.angle_deg != 90.0)
-        rc.problem("effects.crack.angle_deg", fmt::format("{}: inclined cracks are not supported yet; use 90 (normal to the "
-                                                          "surface)", effect.angle_deg));
-      if (const json* fr = rc.find("face_friction")) {
-        if (!fr->is_number() || fr->get<double>() != 0.0)
-          rc.problem("effects.crack.face_friction", fmt::format("{}: crack-face friction is not supported yet; give 0 "
-                                                                "(frictionless faces)", describe(*fr)));
-      }
+      effect.face_friction = rc.number("face_friction", 0.0,
+                                       {[](double v) { return v >= 0.0; }, "a Coulomb coefficient >= 0 (0: frictionless faces)"})
+                                 .value_or(0.0);
       effect.quadrature = int(rc.number("quadrature", 60.0, {[](double v) { return v >= 2 && v <= 1000 && v == std::floor(v); },
                                                             "a whole number of points from 2 to 1000"})
                                   .value_or(60.0));
@@ -581,8 +655,44 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     const char* who = s.tangential_implied ? "effects.wear (through the load cycle it needs)" : "effects.tangential";
     if (!s.friction)
       problems.push_back(fmt::format("friction: missing; {} needs a friction coefficient in (0, 10]", who));
-    if (!s.Q_amplitude && !s.Q_ratio)
-      problems.push_back(fmt::format("load.Q: missing; {} needs {{\"amplitude\": Q (N/m)}} or {{\"ratio\": Q/(fP)}}", who));
+    if (!s.history.empty()) {
+      if (s.Q_amplitude || s.Q_ratio)
+        problems.push_back("load.Q: given with load.history, which gives Q at each point; remove load.Q");
+      if (s.bulk_stress != 0.0)
+        problems.push_back(
+            "load.bulk_stress: given with load.history, which gives sigma_bulk at each point; remove it");
+      if (s.control != LoadControl::force)
+        problems.push_back("load.history: its points give Q; with load.control \"displacement\" it is not supported "
+                           "yet; use load.control \"force\"");
+      if (s.tangential->route == TangentialRoute::analogy)
+        problems.push_back("effects.tangential.route: \"analogy\" cannot run load.history (the analogy needs a "
+                           "constant P and Q between fixed limits); use \"auto\" or \"incremental\"");
+      if (s.wear)
+        problems.push_back("effects.wear: the wear stage cycles Q between fixed limits; load.history with wear is not "
+                           "supported yet");
+      if (s.stress || s.crack)
+        problems.push_back("effects.stress, effects.crack: their top and bottom phases assume the in-phase cycle of "
+                           "load.Q; with load.history they are not supported yet");
+    } else if (s.control == LoadControl::force) {
+      if (!s.Q_amplitude && !s.Q_ratio && !history_given)
+        problems.push_back(fmt::format("load.Q: missing; {} needs {{\"amplitude\": Q (N/m)}} or {{\"ratio\": Q/(fP)}}",
+                                       who));
+      if (s.delta)
+        problems.push_back("load.delta: given, but load.control is \"force\"; set load.control to \"displacement\" "
+                           "or remove load.delta");
+    } else {
+      if (!s.delta)
+        problems.push_back("load.delta: missing; load.control \"displacement\" needs the amplitude of the relative "
+                           "tangential displacement of the reference points, a number in (0, 1) m");
+      if (s.Q_amplitude || s.Q_ratio)
+        problems.push_back("load.Q: given with load.control \"displacement\", where Q is the result; remove load.Q");
+      if (s.tangential->route == TangentialRoute::analogy)
+        problems.push_back("effects.tangential.route: \"analogy\" cannot run load.control \"displacement\" (the "
+                           "analogy needs Q between fixed limits); use \"auto\" or \"incremental\"");
+      if (s.wear)
+        problems.push_back("effects.wear: the wear stage cycles Q between fixed limits; load.control "
+                           "\"displacement\" with wear is not supported yet");
+    }
     const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
     if (std::abs(pair.beta()) > 1e-12)
       problems.push_back(fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the normal and "
@@ -595,6 +705,14 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     if (s.bulk_stress != 0.0)
       problems.push_back("load.bulk_stress: given, but no effect uses it; add \"tangential\": {} to effects");
     if (s.friction) problems.push_back("friction: given, but no effect uses it; add \"tangential\": {} to effects");
+    if (!s.history.empty())
+      problems.push_back("load.history: given, but no effect uses it; add \"tangential\": {} to effects");
+    if (s.control != LoadControl::force || s.delta)
+      problems.push_back("load.control, load.delta: given, but no effect uses them; add \"tangential\": {} to "
+                         "effects");
+    if (s.reference_depth)
+      problems.push_back("grid.reference_depth: given, but no effect uses it (the displacement datum serves the load "
+                         "cycle); add \"tangential\": {} to effects");
   }
 
   // Whole-scene checks, once the parts are readable.
@@ -657,16 +775,20 @@ json Scene::to_json() const {
   if (Q_amplitude) j["load"]["Q"] = {{"amplitude", *Q_amplitude}};
   if (Q_ratio) j["load"]["Q"] = {{"ratio", *Q_ratio}};
   if (tangential) j["load"]["bulk_stress"] = {{"amplitude", bulk_stress}};
+  if (tangential) j["load"]["control"] = to_string(control);
+  if (delta) j["load"]["delta"] = *delta;
+  if (!history.empty()) j["load"]["history"] = history;
   if (friction) j["friction"] = *friction;
   j["grid"] = {{"cells", cells}};
   if (window) j["grid"]["window"] = {window->first, window->second};
+  if (reference_depth) j["grid"]["reference_depth"] = *reference_depth;
   j["effects"] = json::object();
   if (tangential)
     j["effects"]["tangential"] = {{"route", to_string(tangential->route)}, {"increments", tangential->increments}};
   if (stress) j["effects"]["stress"] = {{"nx", stress->nx}, {"ny", stress->ny}, {"depth", stress->depth}};
   if (crack) {
     j["effects"]["crack"] = {{"angle_deg", crack->angle_deg}, {"lengths", crack->lengths},
-                             {"quadrature", crack->quadrature}, {"face_friction", 0.0}};
+                             {"quadrature", crack->quadrature}, {"face_friction", crack->face_friction}};
     if (crack->at == "x")
       j["effects"]["crack"]["at"] = crack->x;
     else

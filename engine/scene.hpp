@@ -2,6 +2,7 @@
 // validates everything at once and fills the defaults; to_json() writes the resolved scene back.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -31,6 +32,10 @@ class SceneError : public InputError {
 enum class TangentialRoute { automatic, analogy, incremental };
 std::string to_string(TangentialRoute r);  // "auto", "analogy", "incremental"
 
+// load.control: what the cycle prescribes, the tangential load Q or the datum's relative displacement δ.
+enum class LoadControl { force, displacement };
+std::string to_string(LoadControl c);  // "force", "displacement"
+
 struct TangentialEffect {
   TangentialRoute route = TangentialRoute::automatic;
   int increments = 40;  // per cycle, for the incremental route
@@ -59,16 +64,25 @@ struct Scene {
   std::optional<double> Q_amplitude;     // load.Q.amplitude (N/m)
   std::optional<double> Q_ratio;         // load.Q.ratio = Q/(fP)
   double bulk_stress = 0.0;              // load.bulk_stress.amplitude: σ in the specimen in phase with Q (Pa)
+  LoadControl control = LoadControl::force;  // load.control
+  std::optional<double> delta;           // load.delta: the amplitude of δ under displacement control (m)
+  std::vector<std::array<double, 4>> history;  // load.history: [t (s), P (N/m), Q (N/m), σ_bulk (Pa)], the last
+                                               // point repeating the first's P, Q, σ; empty: the cycle of load.Q
   std::optional<TangentialEffect> tangential;
   bool tangential_implied = false;       // added because wear needs the cycle
   std::optional<WearEffect> wear;
   std::optional<StressEffect> stress;
   std::optional<CrackEffect> crack;
 
-  // Q at the top of the cycle (N/m), from the amplitude or the ratio; 0 without a tangential load.
+  // Q at the top of the cycle (N/m), from the amplitude or the ratio (the largest |Q| of a history); 0 without a
+  // tangential load.
   double Q_max() const;
+  // The largest normal load of the scene (N/m): P, or a history's largest.
+  double P_max() const;
   int cells = 1024;                      // grid.cells
   std::optional<std::pair<double, double>> window;  // grid.window (m); chosen from the contact when absent
+  std::optional<double> reference_depth;  // grid.reference_depth (m): the displacement datum's depth below the
+                                          // contact centre; 10 contact half-widths when absent
   std::filesystem::path output_dir;      // output.dir; default output/<name>
   bool plots = true;                     // output.plots
 

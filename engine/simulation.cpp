@@ -10,6 +10,8 @@
 #include "contact/half_plane_kernel.hpp"
 #include "contact/incremental_slip.hpp"
 #include "contact/load_size.hpp"
+#include "contact/reference_datum.hpp"
+#include "engine/fatigue_stage.hpp"
 #include "engine/version.hpp"
 #include "engine/wear_stage.hpp"
 
@@ -110,7 +112,7 @@ Model make_model(const Scene& scene, int cells) {
     return model_on(scene, Grid{scene.window->first, scene.window->second, cells},
                     {scene.window->first, scene.window->second, "given", 0.0});
   }
-  WindowChoice w = choose_window(profile, pair.A(), scene.P, cells);
+  WindowChoice w = choose_window(profile, pair.A(), scene.P_max(), cells);  // a history's largest P too
   if (scene.wear) w = widen_for_wear(scene, profile, w);
   return model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w);
 }
@@ -151,6 +153,27 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
   return r;
 }
 
+namespace {
+
+// δ at the top of an analogy cycle: the stick zone of the steady cycle has never slipped (w = 0 there since the first
+// loading), so at its cells the rigid shift is λ = (K q_top)_i + ε x_i (incremental_slip.hpp), and δ follows from the
+// datum (reference_datum.hpp). In phase, the bottom is the top reversed: δ_max = |δ_top|.
+void analogy_delta_max(const Model& model, const NormalResult& normal, const CyclicLoad& load,
+                       const ReferenceDatum& datum, CycleResult& c) {
+  if (!c.stick_zone || c.q_top.empty()) return;
+  const Grid& g = model.grid;
+  const double x_mid = 0.5 * (c.stick_zone->first + c.stick_zone->second);
+  const int i = std::clamp(int(std::floor((x_mid - g.x_min) / g.h())), 0, g.n - 1);
+  std::vector<double> u(g.n);
+  model.kernel->apply(c.q_top, u);
+  const double lambda = u[i] + load.bulk_strain * g.x(i);
+  const double D0 = datum.relative_displacement(std::vector<double>(g.n, 0.0), normal.state.p);
+  c.delta_max = std::abs(lambda + datum.relative_displacement(c.q_top, normal.state.p) - D0 -
+                         load.bulk_strain * datum.x_c());
+}
+
+}  // namespace
+
 CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal) {
   CycleStage stage;
   stage.f = *scene.friction;
@@ -158,11 +181,24 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   stage.bulk_stress = scene.bulk_stress;
   const ElasticPair& pair = model.pair;
   const double bulk_strain = scene.bulk_stress * (pair.kappa_specimen() + 1.0) / (8.0 * pair.mu_specimen());
-  const CyclicLoad load{scene.P, stage.Q_max, stage.f, bulk_strain};
+  const bool displacement = scene.control == LoadControl::displacement;
+  CyclicLoad load{scene.P, stage.Q_max, stage.f, bulk_strain, displacement ? *scene.delta : 0.0};
+  const double strain_per_stress = (pair.kappa_specimen() + 1.0) / (8.0 * pair.mu_specimen());
+  for (const auto& pt : scene.history) load.history.push_back({pt[0], pt[1], pt[2], pt[3] * strain_per_stress});
+  const bool history = !load.history.empty();
   const TangentialRoute route = scene.tangential->route;
-  if (route != TangentialRoute::incremental) {
+  // The datum: reference points 10 contact half-widths (or grid.reference_depth) below the contact's centre.
+  const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
+  stage.reference_x = 0.5 * (x_left + x_right);
+  stage.reference_depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
+  const ReferenceDatum datum(model.grid, pair, stage.reference_x, stage.reference_depth);
+  if (route == TangentialRoute::analogy && (displacement || history))  // parse_scene refuses it too
+    throw UnsupportedError("effects.tangential: route \"analogy\" cannot run load.control \"displacement\" or "
+                           "load.history; use \"auto\" or \"incremental\"");
+  if (route != TangentialRoute::incremental && !displacement && !history) {
     stage.route = "analogy";
     stage.result = TangentialSolver(*model.kernel).solve_cycle(model.g0, normal.state, normal.zones, load);
+    if (stage.result.regime == Regime::partial_slip) analogy_delta_max(model, normal, load, datum, stage.result);
     if (stage.result.regime != Regime::reverse_slip) return stage;
     if (route == TangentialRoute::analogy)
       throw UnsupportedError("effects.tangential: " + stage.result.message +
@@ -172,9 +208,16 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   // whatever the analogy cannot do). The steady cycle is the second, after the first loading and one full cycle.
   IncrementalSlipOptions options;
   options.increments_per_cycle = scene.tangential->increments;
-  const IncrementalResult r = IncrementalSlipSolver(*model.kernel, options).solve(normal.state, load);
-  stage.route = route == TangentialRoute::incremental ? "incremental" : "incremental (auto: the analogy found reverse slip)";
+  const IncrementalSlipSolver solver(*model.kernel, options);
+  const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum)
+                                      : solver.solve(normal.state, load, &datum);
+  stage.route = route == TangentialRoute::incremental ? "incremental"
+                : displacement ? "incremental (auto: displacement control)"
+                : history      ? "incremental (auto: load history)"
+                               : "incremental (auto: the analogy found reverse slip)";
   stage.result = r.cycles.back();
+  if ((displacement || history) && !stage.result.slip_range.empty())
+    stage.Q_max = stage.result.Q_peak;  // the peak Q reached
   return stage;
 }
 
@@ -221,6 +264,9 @@ RunResult Simulation::run(const WearControl* control) const {
       const std::vector<Phase> phases =
           result.wear ? cycle_phases(scene_, last.p, &last.q) : initial;  // the final state when wearing
       result.stress_maps = stress_maps(model.grid, phases, xl - 0.5 * half, xr + 0.5 * half, depth, *scene_.stress);
+      if (result.cycle)  // fatigue measures from the maps' top and bottom (engine/fatigue_stage.hpp)
+        result.fatigue = run_fatigue(scene_, model.grid, phases.front(), result.stress_maps, *result.cycle,
+                                     result.wear.get());
       result.timings.stress = seconds_since(t3);
     }
     if (scene_.crack) {
@@ -283,7 +329,7 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
     auto interval = [](const std::optional<Interval>& i) { return i ? json{i->first, i->second} : json(nullptr); };
     json stick_zones = json::array();
     for (const auto& z : c.stick_zones) stick_zones.push_back({z.first, z.second});
-    const bool slips = c.regime != Regime::gross_slip;
+    const bool slips = !c.slip_range.empty();  // gross slip has fields only under displacement control
     cycle = {{"route", st.route},
              {"regime", to_string(c.regime)},
              {"Q_max", st.Q_max},
@@ -295,8 +341,16 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
              {"stick_zone_unloaded", interval(c.stick_zone_unloaded)},
              {"dissipated_energy", slips ? json(c.dissipated_energy) : json(nullptr)},
              {"slip_max", slips ? json(c.slip_max) : json(nullptr)},
+             {"delta_max", c.delta_max > 0.0 ? json(c.delta_max) : json(nullptr)},
+             {"control", to_string(scene.control)},
+             {"reference_depth", st.reference_depth},
+             {"reference_x", st.reference_x},
              {"corrective_solves", c.solves.size()}};
     if (!c.message.empty()) cycle["message"] = c.message;
+    if (scene.control == LoadControl::displacement) {
+      cycle["delta"] = *scene.delta;
+      cycle["sliding_amplitude"] = c.sliding_amplitude;  // 0 short of gross slip
+    }
   }
   json summary = {
       {"scene", scene.name},
@@ -338,6 +392,7 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
                          {"cycles", result.wear ? result.wear->records.back().cycles : 0.0},
                          {"window", {result.stress_maps.front().x.front(), result.stress_maps.front().x.back()}},
                          {"depth", result.stress_maps.front().y.back()}};
+    if (result.fatigue) add_fatigue_summary(summary["stress"], *result.fatigue);
   }
   if (!result.sifs.empty()) {
     summary["effects_run"].push_back("crack");

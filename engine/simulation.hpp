@@ -56,12 +56,16 @@ struct Timings {
 
 struct WearStage;
 struct WearControl;  // engine/wear_stage.hpp
+struct FatigueStage;  // engine/fatigue_stage.hpp
 
 // What the cycle stage computed, with the route that ran.
 struct CycleStage {
   CycleResult result;
   std::string route;  // "analogy"
   double Q_max = 0.0, f = 0.0, bulk_stress = 0.0;
+  // The displacement datum (contact/reference_datum.hpp): reference points at depth reference_depth (m) below
+  // reference_x (m), the centre of the contact under P alone.
+  double reference_x = 0.0, reference_depth = 0.0;
 };
 
 struct RunResult {
@@ -71,6 +75,7 @@ struct RunResult {
   std::vector<StressMap> stress_maps;      // at the top and bottom (initial state, and the last record when wearing)
   std::vector<SifSet> sifs;                // at the top and bottom of every state (initial, then each record)
   double crack_x = 0.0;                    // where the crack is (m)
+  std::shared_ptr<const FatigueStage> fatigue;  // SWT and Ruiz, with the stress maps of a cycle
   Timings timings;
 };
 

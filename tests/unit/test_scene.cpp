@@ -182,11 +182,11 @@ TEST_CASE("a tilt steeper than the flanks has no lowest point") {
 TEST_CASE("keys of capabilities not built yet are reported as such, never ignored") {
   json j = good();
   j["load"]["history"] = json::array();
-  j["effects"] = {{"crack", {{"lengths", {1e-5}}, {"angle_deg", 30}}}, {"tangential", {{"route", "incremental"}, {"increments", 42}}}};
+  j["effects"] = {{"crack", {{"lengths", {1e-5}}, {"angle_deg", 5}}}, {"tangential", {{"route", "incremental"}, {"increments", 42}}}};
   j["friction"] = 0.5;
   j["load"]["Q"] = {{"ratio", 0.5}};
-  CHECK(reports(j, "load.history", {"not supported yet"}));
-  CHECK(reports(j, "effects.crack.angle_deg", {"not supported yet"}));
+  CHECK(reports(j, "load.history", {"not long enough", "[t, P, Q, sigma_bulk]"}));  // built: an empty one is named
+  CHECK(reports(j, "effects.crack.angle_deg", {"[15, 165]"}));  // inclined cracks are built; too flat ones are not
   CHECK(reports(j, "effects.tangential.increments", {"multiple of 4"}));
 }
 

@@ -61,9 +61,29 @@ TEST_CASE("the trailing edge crack sits at the contact's left edge; stresses rep
     CHECK(s["crack"][key].size() == 1);
 }
 
+TEST_CASE("an inclined crack with rough faces far from the contact: the inclined edge crack's factors, closed at the bottom") {
+  // 45° in σxx = ±100 MPa: K_I = 0.70507 σ√(πl) at N = 60 (test_crack_inclined.cpp) at the top; at the bottom the
+  // faces close (K_I = 0, the open value −0.70507) and friction f = 0.5 < cot 45° lets them slip: |K_II| below the
+  // frictionless value 0.5328 σ√(πl) (test_crack_friction.cpp) and above 0.
+  json j = cycle_scene();
+  const double a = 0.107641e-3, sigma = 1e8;
+  j["effects"]["crack"] = {{"at", -1000 * a}, {"angle_deg", 45}, {"face_friction", 0.5}, {"lengths", {1e-5}}};
+  const json s = run(j);
+  const json& c = s["crack"];
+  const double K = sigma * std::sqrt(std::numbers::pi * 1e-5);
+  CHECK(c["K_I_max"][0].get<double>() == test::rel(0.70507 * K, 5e-3));
+  CHECK(c["K_II_max"][0].get<double>() == test::rel(0.36450 * K, 5e-3));
+  CHECK(c["K_I_min"][0].get<double>() == 0.0);
+  CHECK(c["closed_min"][0].get<bool>());
+  CHECK(c["K_I_open_min"][0].get<double>() == test::rel(-0.70507 * K, 5e-3));
+  CHECK(std::abs(c["K_II_min"][0].get<double>()) < 0.5328 * K);
+  CHECK(std::abs(c["K_II_min"][0].get<double>()) > 0.1 * K);
+  CHECK(c["angle_deg"].get<double>() == 45.0);
+}
+
 TEST_CASE("crack and stress keys: errors name the key and what is allowed") {
   json j = cycle_scene();
-  j["effects"]["crack"] = {{"angle_deg", 45}, {"face_friction", 0.3}, {"at", "middle"}};
+  j["effects"]["crack"] = {{"angle_deg", 10}, {"face_friction", -0.3}, {"at", "middle"}};
   j["effects"]["stress"] = {{"nx", 2}};
   try {
     parse_scene(j);
@@ -71,8 +91,9 @@ TEST_CASE("crack and stress keys: errors name the key and what is allowed") {
   } catch (const SceneError& e) {
     std::string all;
     for (const auto& p : e.problems()) all += p + "\n";
-    CHECK(all.find("effects.crack.angle_deg: 45: inclined cracks are not supported yet") != std::string::npos);
-    CHECK(all.find("effects.crack.face_friction") != std::string::npos);
+    CHECK(all.find("effects.crack.angle_deg: 10 is not allowed; give an angle to the surface in [15, 165] degrees") !=
+          std::string::npos);
+    CHECK(all.find("effects.crack.face_friction: -0.3 is not allowed") != std::string::npos);
     CHECK(all.find("effects.crack.at") != std::string::npos);
     CHECK(all.find("effects.crack.lengths: missing") != std::string::npos);
     CHECK(all.find("effects.stress.nx") != std::string::npos);

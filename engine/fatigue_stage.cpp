@@ -1,0 +1,215 @@
+#include "engine/fatigue_stage.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "engine/output.hpp"
+#include "engine/wear_stage.hpp"
+
+namespace fretwear {
+
+namespace {
+
+const StressMap* find_map(const std::vector<StressMap>& maps, const std::string& phase) {
+  for (const StressMap& m : maps)
+    if (m.phase == phase) return &m;
+  return nullptr;
+}
+
+// Maxima closer than this (relative) are ties, which go to the first point met: rows from the surface down, x
+// increasing. A cycle without bulk stress is symmetric (the bottom is the top mirrored), so both edges are equally
+// critical; the report then names the trailing edge (−x), to within the normal solve's tolerance.
+constexpr double kTie = 1e-6;
+
+SwtMap swt_map(const StressMap& top, const StressMap& bottom, const Material& specimen, PlaneState plane) {
+  SwtMap out;
+  out.x = top.x, out.y = top.y;
+  out.points.resize(top.sigma.size());
+  for (std::size_t k = 0; k < top.sigma.size(); ++k) {
+    const Stress states[2] = {top.sigma[k], bottom.sigma[k]};
+    out.points[k] = swt_critical_plane(states, specimen, plane);
+    if (k == 0 || out.points[k].swt > out.max.swt + kTie * std::abs(out.max.swt)) {
+      out.max = out.points[k];
+      out.max_x = out.x[k % out.x.size()], out.max_y = out.y[k / out.x.size()];
+    }
+  }
+  return out;
+}
+
+std::string num(double v) { return fmt::format("{:.10g}", v); }
+
+double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
+
+std::string fatigue_csv(const SwtMap& m) {
+  std::string s = "x_m,y_m,swt_Pa,theta_crit_deg,sigma_n_max_Pa,delta_eps_n\n";
+  s.reserve(s.size() + m.points.size() * 80);
+  for (std::size_t j = 0; j < m.y.size(); ++j)
+    for (std::size_t i = 0; i < m.x.size(); ++i) {
+      const SwtResult& r = m.points[j * m.x.size() + i];
+      s += fmt::format("{},{},{},{},{},{}\n", num(m.x[i]), num(m.y[j]), num(r.swt), num(degrees(r.theta)),
+                       num(r.sigma_n_max), num(r.delta_eps_n));
+    }
+  return s;
+}
+
+// gnuplot's pm3d wants one block per depth: x, y, SWT.
+std::string swt_map_dat(const SwtMap& m) {
+  std::string s;
+  for (std::size_t j = 0; j < m.y.size(); ++j) {
+    for (std::size_t i = 0; i < m.x.size(); ++i)
+      s += fmt::format("{} {} {}\n", num(m.x[i]), num(m.y[j]), num(m.points[j * m.x.size() + i].swt));
+    s += "\n";
+  }
+  return s;
+}
+
+std::string ruiz_csv(const RuizProfile& r) {
+  std::string s = "x_m,sxx_top_Pa,tau_top_Pa,slip_amplitude_m,F1_Pa_m,F2_Pa2_m\n";
+  for (std::size_t i = 0; i < r.x.size(); ++i)
+    s += fmt::format("{},{},{},{},{},{}\n", num(r.x[i]), num(r.sigma_t[i]), num(r.tau[i]), num(r.delta[i]),
+                     num(r.F1[i]), num(r.F2[i]));
+  return s;
+}
+
+std::string svg_and_png(const std::string& stem, const std::string& plot, int width, int height) {
+  return fmt::format("set terminal svg size {0},{1} dynamic font 'sans,12'\nset output '{2}.svg'\n{3}"
+                     "set terminal pngcairo size {0},{1} font 'sans,11'\nset output '{2}.png'\nreplot\nunset output\n",
+                     width, height, stem, plot);
+}
+
+// fatigue.gp: the SWT map with contour lines, the critical plane at its maximum, the contact's ends; Ruiz's F1 and
+// F2 along x with the stick zone shaded.
+std::string fatigue_plot_script(const Scene& scene, const RunResult& r, const FatigueStage& f) {
+  const SwtMap& m = f.swt;
+  const double x0 = m.x.front() * 1e3, x1 = m.x.back() * 1e3, depth = m.y.back() * 1e3;
+  std::string s = fmt::format(R"(# Fatigue measures (contact/fatigue_measures.hpp). Re-run with: gnuplot fatigue.gp
+set view map
+set pm3d map interpolate 0,0
+set palette rgbformulae 33,13,10
+set contour base
+set cntrparam levels 12
+unset clabel
+set xlabel 'x (mm)'
+set ylabel 'depth y (mm)'
+set cblabel 'SWT = σ_{{n,max}} Δε_n / 2 (MPa = MJ/m³)'
+set yrange [{}:0]
+set xrange [{}:{}]
+set cbrange [0:*]
+set size ratio -1
+unset key
+)", depth, x0, x1);
+  for (const auto& z : r.normal.zones)
+    for (double x : {z.left.x, z.right.x})
+      s += fmt::format("set arrow from {0},{1} to {0},0 nohead front dt 3 lc rgb '#ffffff'\n", x * 1e3, 0.25 * depth);
+  // The critical plane at the maximum: a segment along the plane (its normal at θ from +x toward +y), drawn from the
+  // point into the specimen (y down the page).
+  const double theta = m.max.theta, length = 0.3 * depth;
+  double tx = -std::sin(theta), ty = std::cos(theta);
+  if (ty < 0.0) tx = -tx, ty = -ty;
+  const double px = m.max_x * 1e3, py = m.max_y * 1e3;
+  s += fmt::format("set arrow from {},{} to {},{} nohead front lw 3 lc rgb '#000000'\n", px, py, px + tx * length,
+                   py + ty * length);
+  s += fmt::format("set label 'max {:.3g} MPa at x = {:.4g} mm, y = {:.3g} µm; critical plane (black) θ_{{crit}} = "
+                   "{:.1f}°' at graph 0.02,0.06 front tc rgb '#ffffff'\n",
+                   m.max.swt * 1e-6, px, m.max_y * 1e6, degrees(theta));
+  s += fmt::format("set title \"{}: Smith–Watson–Topper on the critical plane over the cycle\" noenhanced\n",
+                   scene.name);
+  s += svg_and_png("swt_map",
+                   "splot 'swt_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d notitle, "
+                   "'' using ($1*1e3):($2*1e3):($3*1e-6) nosurface with lines lc rgb '#333333' notitle\n",
+                   1000, 460);
+  if (!f.ruiz) return s;
+  s += R"(
+reset
+set datafile separator ','
+set grid
+set key outside below center
+set xlabel 'x (mm)'
+set ylabel 'F1 = τ δ (J/m²)'
+set y2label 'F2 = σ_T τ δ (MPa·J/m²)'
+set ytics nomirror
+set y2tics
+set yrange [0:*]
+set y2range [0:*]
+)";
+  s += fmt::format("set xrange [{}:{}]\n", x0, x1);
+  const CycleResult& c = r.cycle->result;
+  if (c.stick_zone)
+    s += fmt::format("set object 1 rect from {},graph 0 to {},graph 1 back fc rgb '#eeeeee' fs solid noborder\n",
+                     c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
+  s += fmt::format("set title \"{}: Ruiz parameters along the surface, top of the cycle (grey: stick zone)\" "
+                   "noenhanced\n", scene.name);
+  s += svg_and_png("ruiz",
+                   "plot 'ruiz.csv' skip 1 using ($1*1e3):5 with lines lw 1.8 lc rgb '#1f77b4' title 'F1 = τ δ, "
+                   "left axis (τ shear traction, δ slip amplitude)', '' skip 1 using ($1*1e3):($6*1e-6) axes x1y2 "
+                   "with lines lw 1.8 lc rgb '#d62728' title 'F2 = σ_T τ δ, right axis (σ_T tensile surface σ_{xx})'\n",
+                   1000, 600);
+  return s;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::shared_ptr<const FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const Phase& top,
+                                                const std::vector<StressMap>& maps, const CycleStage& cycle,
+                                                const WearStage* wear) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const StressMap *map_top = find_map(maps, "top"), *map_bottom = find_map(maps, "bottom");
+  if (!map_top || !map_bottom) return nullptr;
+  auto out = std::make_shared<FatigueStage>();
+  out->swt = swt_map(*map_top, *map_bottom, scene.specimen, scene.plane);
+  if (cycle.result.regime != Regime::gross_slip) {
+    // The slip of the state the maps show: the cycle's peak-to-peak range, or the last wear record's slip travelled
+    // per cycle, which is twice the range (each slip-zone point runs over its range once each way).
+    std::vector<double> range = cycle.result.slip_range;
+    if (wear && !wear->records.empty() && wear->records.back().s.size() == std::size_t(grid.n)) {
+      range = wear->records.back().s;
+      for (double& v : range) v *= 0.5;
+    }
+    if (range.size() == std::size_t(grid.n))
+      out->ruiz = ruiz_along_surface(SurfaceTractions{grid, top.p, top.q, top.sigma_bulk}, range);
+  }
+  out->seconds = seconds_since(t0);
+  return out;
+}
+
+void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& f) {
+  using nlohmann::json;
+  const SwtMap& m = f.swt;
+  stress["swt_max"] = m.max.swt;
+  stress["swt_max_x"] = m.max_x;
+  stress["swt_max_y"] = m.max_y;
+  stress["swt_theta_deg"] = degrees(m.max.theta);
+  stress["swt_sigma_n_max"] = m.max.sigma_n_max;
+  stress["swt_delta_eps_n"] = m.max.delta_eps_n;
+  const std::optional<RuizProfile>& r = f.ruiz;
+  stress["ruiz_F1_max"] = r ? json(r->F1_max) : json(nullptr);
+  stress["ruiz_F1_max_x"] = r ? json(r->F1_max_x) : json(nullptr);
+  stress["ruiz_F2_max"] = r ? json(r->F2_max) : json(nullptr);
+  stress["ruiz_F2_max_x"] = r ? json(r->F2_max_x) : json(nullptr);
+  stress["fatigue_seconds"] = f.seconds;
+}
+
+void write_fatigue(const Scene& scene, const RunResult& result, const FatigueStage& f, OutputFolder& out,
+                   std::vector<std::string>& tables, std::vector<std::string>& plots) {
+  out.write("fatigue.csv", fatigue_csv(f.swt));
+  tables.push_back("fatigue.csv");
+  if (f.ruiz) {
+    out.write("ruiz.csv", ruiz_csv(*f.ruiz));
+    tables.push_back("ruiz.csv");
+  }
+  if (!scene.plots) return;
+  out.write("swt_map.dat", swt_map_dat(f.swt));
+  out.write("fatigue.gp", fatigue_plot_script(scene, result, f));
+  if (!run_gnuplot(out.path(""), "fatigue.gp")) return;
+  plots.insert(plots.end(), {"swt_map.svg", "swt_map.png"});
+  if (f.ruiz) plots.insert(plots.end(), {"ruiz.svg", "ruiz.png"});
+}
+
+}  // namespace fretwear

@@ -1,0 +1,164 @@
+// Load histories (load.history) on the incremental route (contact/incremental_slip.hpp, solve_history): a history
+// that is the default in-phase cycle gives the force-control route's cycle, a normal load that drops under a
+// constant Q makes the edges slip, and the steady cycle closes.
+//
+// Tolerances. The in-phase history [top, bottom, top] with `increments` m puts its increments exactly where the
+// force-control route puts them (the first loading in m/4 steps, each half cycle in m/2), so both solve the same
+// sequence of programs and agree to round-off (σ enters as ε by another product): measured 1.2e-12 f p0 in q
+// and 1e-15 relative in energy; kSame = 1e-10.
+// A closed cycle repeats once steady: the energy to 1e-12 relative (kRepeat = 1e-9); the traction to the CG
+// tolerance (1e-8 of an increment), measured 8.4e-8 f p0 (kRepeatTraction = 1e-6 f p0, as test_cycle_incremental's).
+#include <algorithm>
+#include <cmath>
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include "scenes.hpp"
+#include "support.hpp"
+
+#include "contact/closed_form.hpp"
+#include "contact/incremental_slip.hpp"
+#include "engine/simulation.hpp"
+
+using namespace fretwear;
+
+namespace {
+
+constexpr double kSame = 1e-10;
+constexpr double kRepeat = 1e-9;
+constexpr double kRepeatTraction = 1e-6;
+
+double max_abs_diff(const std::vector<double>& x, const std::vector<double>& y) {
+  REQUIRE(x.size() == y.size());
+  double d = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) d = std::max(d, std::abs(x[i] - y[i]));
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("load history: the in-phase cycle as a history is the force-controlled cycle") {
+  const double P = 1e5;
+  const auto hz = closed_form::hertz(P, 4 * (1 - test::kHertzNu * test::kHertzNu) / test::kHertzE, test::kHertzR);
+  const double Q = 0.5 * test::kHertzF * P, sigma = 0.6 * test::kHertzF * hz.p0;  // Nowell–Hills, PHYSICS.md
+  Scene force = test::hertz_cycle(P, 0.5, 1024, sigma);
+  force.tangential->route = TangentialRoute::incremental;
+  Scene history = test::hertz_cycle(P, 0.0, 1024);
+  history.Q_ratio.reset();
+  history.history = {{0.0, P, Q, sigma}, {1.0, P, -Q, -sigma}, {2.0, P, Q, sigma}};
+  const Model m = make_model(force);
+  const NormalResult n = solve_normal(force, m);
+  const CycleStage a = solve_cycle(force, m, n);
+  const CycleStage b = solve_cycle(history, m, n);
+  CHECK(b.route == "incremental (auto: load history)");
+  const double dq = max_abs_diff(a.result.q_top, b.result.q_top) / (test::kHertzF * hz.p0);
+  const double dq_unloaded = max_abs_diff(a.result.q_unloaded, b.result.q_unloaded) / (test::kHertzF * hz.p0);
+  MESSAGE(fmt::format("history vs force control: q_top {:.3g} f p0, q_unloaded {:.3g} f p0, energy {:.12g} vs {:.12g} "
+                      "J/m, delta_max {:.12g} vs {:.12g} m, stick zone [{:.6f}, {:.6f}] a",
+                      dq, dq_unloaded, b.result.dissipated_energy, a.result.dissipated_energy, b.result.delta_max,
+                      a.result.delta_max, b.result.stick_zone->first / hz.a, b.result.stick_zone->second / hz.a));
+  CHECK(dq < kSame);
+  CHECK(dq_unloaded < kSame);
+  CHECK(max_abs_diff(a.result.q_bottom, b.result.q_bottom) < kSame * test::kHertzF * hz.p0);
+  CHECK(b.result.dissipated_energy == test::rel(a.result.dissipated_energy, kSame));
+  CHECK(b.result.slip_max == test::rel(a.result.slip_max, kSame));
+  CHECK(b.result.delta_max == test::rel(a.result.delta_max, kSame));
+  CHECK(b.Q_max == test::rel(Q, kSame));
+  REQUIRE(b.result.stick_zone);
+  CHECK(std::abs(b.result.stick_zone->first + 0.557107 * hz.a) < 0.25 * m.grid.h());
+  CHECK(std::abs(b.result.stick_zone->second - 0.857107 * hz.a) < 0.25 * m.grid.h());
+}
+
+TEST_CASE("load history: a constant Q while P drops and recovers slips the edges once, then shakes down") {
+  // For uncoupled bodies (β = 0) Melan's theorem holds with Coulomb friction (Klarbring, Ciavarella and Barber 2007,
+  // Int. J. Solids Struct. 44): if a residual traction exists under which no cell slips, the contact shakes down.
+  // Under a constant Q the first drop of P slips the edges and leaves that residual state: no slip afterwards.
+  const double P = 1e5, Q = 0.4 * test::kHertzF * P;
+  Scene s = test::hertz_cycle(P, 0.0, 1024);
+  s.Q_ratio.reset();
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
+                        {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}}};
+  IncrementalSlipOptions o;
+  o.cycles = 3;
+  const IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve_history(n.state, load, m.g0);
+  REQUIRE(r.cycles.size() == 3);
+  const CycleResult& c1 = r.cycles[0];
+  const auto hz = closed_form::hertz(P, m.pair.A(), test::kHertzR);
+  const auto hz_low = closed_form::hertz(0.6 * P, m.pair.A(), test::kHertzR);
+  double x_slip_min = hz.a;
+  for (int i = 0; i < m.grid.n; ++i)
+    if (c1.slip_travelled[i] > 0.0) x_slip_min = std::min(x_slip_min, std::abs(m.grid.x(i)));
+  MESSAGE(fmt::format("constant Q = 0.4 fP, P down to 0.6 P and back: energy per cycle {:.6g}, {:.3g}, {:.3g} J/m; "
+                      "slip_max in cycle 1 {:.6g} m, slipping cells from |x| = {:.4f} a (contact at 0.6 P: {:.4f} a); "
+                      "{} increments",
+                      c1.dissipated_energy, r.cycles[1].dissipated_energy, r.cycles[2].dissipated_energy, c1.slip_max,
+                      x_slip_min / hz.a, hz_low.a / hz.a, r.n_increments));
+  CHECK(c1.regime == Regime::partial_slip);
+  CHECK(c1.dissipated_energy > 0.0);
+  CHECK(c1.slip_max > 0.0);
+  CHECK(x_slip_min > 0.5 * hz_low.a);  // the edges slip, the centre sticks
+  CHECK(x_slip_min < hz_low.a);        // and slip reaches inside the smallest contact
+  for (double e : c1.energy_density) CHECK(e >= 0.0);
+  double load_top = 0.0;  // h Σ q = Q at every increment
+  for (double q : c1.q_top) load_top += q * m.grid.h();
+  CHECK(load_top == test::rel(Q, 1e-12));
+  // Shakedown: nothing slips in the later cycles, which repeat each other.
+  for (int k : {1, 2}) {
+    CAPTURE(k);
+    CHECK(r.cycles[k].dissipated_energy <= kRepeat * c1.dissipated_energy);
+    CHECK(r.cycles[k].slip_max <= kRepeat * c1.slip_max);
+  }
+  CHECK(max_abs_diff(r.cycles[2].q_top, r.cycles[1].q_top) < kRepeatTraction * test::kHertzF * hz.p0);
+
+  // Without the drop of P nothing slips at all.
+  CyclicLoad steady = load;
+  steady.history = {{0.0, P, Q, 0.0}, {1.0, P, Q, 0.0}};
+  const IncrementalResult still = IncrementalSlipSolver(*m.kernel).solve_history(n.state, steady, m.g0);
+  CHECK(still.cycles.back().dissipated_energy == 0.0);
+  CHECK(still.cycles.back().slip_max == 0.0);
+}
+
+TEST_CASE("load history: Q cycling with P out of phase - the steady cycle closes and dissipates") {
+  const double P = 1e5, Q = 0.5 * test::kHertzF * P;
+  Scene s = test::hertz_cycle(P, 0.0, 1024);
+  s.Q_ratio.reset();
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  const auto hz = closed_form::hertz(P, m.pair.A(), test::kHertzR);
+  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
+                        {{0.0, P, Q, 0.0}, {1.0, 0.7 * P, 0.0, 0.0}, {2.0, P, -Q, 0.0}, {3.0, 1.3 * P, 0.0, 0.0},
+                         {4.0, P, Q, 0.0}}};
+  IncrementalSlipOptions o;
+  o.cycles = 3;
+  const IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve_history(n.state, load, m.g0);
+  REQUIRE(r.cycles.size() == 3);
+  const CycleResult& c2 = r.cycles[1];
+  const CycleResult& c3 = r.cycles[2];
+  const double dq = max_abs_diff(c3.q_top, c2.q_top) / (test::kHertzF * hz.p0);
+  MESSAGE(fmt::format("Q = ±0.5 fP with P between 0.7 and 1.3 P out of phase: energy per cycle {:.10g}, {:.10g}, "
+                      "{:.10g} J/m; cycle 3 vs 2: q_top {:.3g} f p0; slip_max {:.6g} m",
+                      r.cycles[0].dissipated_energy, c2.dissipated_energy, c3.dissipated_energy, dq, c3.slip_max));
+  CHECK(c3.dissipated_energy > 0.0);
+  CHECK(dq < kRepeatTraction);
+  CHECK(c3.dissipated_energy == test::rel(c2.dissipated_energy, kRepeat));
+  CHECK(max_abs_diff(c3.slip_range, c2.slip_range) < kRepeat * c2.slip_max);
+  CHECK(c3.loop.empty());  // no datum given
+}
+
+TEST_CASE("load history: a history that reaches |Q| >= fP is gross slip, reported without fields") {
+  const double P = 1e5;
+  Scene s = test::hertz_cycle(P, 0.0, 256);
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
+                        {{0.0, P, 0.4 * test::kHertzF * P, 0.0}, {1.0, 0.3 * P, 0.4 * test::kHertzF * P, 0.0},
+                         {2.0, P, 0.4 * test::kHertzF * P, 0.0}}};
+  const IncrementalResult r = IncrementalSlipSolver(*m.kernel).solve_history(n.state, load, m.g0);
+  REQUIRE(r.cycles.size() == 1);
+  CHECK(r.cycles[0].regime == Regime::gross_slip);
+  CHECK(r.cycles[0].slip_range.empty());
+  CHECK(r.cycles[0].message.find("t = 1") != std::string::npos);
+}

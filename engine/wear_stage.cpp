@@ -66,9 +66,9 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
                                          grid.x(i)));
     if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
   }
-  const auto zones = locate_zones(grid, corrective_.p, model_.g0);
-  out.has_stick = !zones.empty();
-  if (out.has_stick) out.stick_left = zones.front().left.x, out.stick_right = zones.back().right.x;
+  stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);
+  out.has_stick = !stick_zones_.empty();
+  if (out.has_stick) out.stick_left = stick_zones_.front().left.x, out.stick_right = stick_zones_.back().right.x;
 }
 
 bool AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
@@ -220,9 +220,15 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
   a.w.assign(n, 0.0);
   a.p.assign(n, 0.0);
   if (!first.has_stick) return a;
-  // The limit is a complete contact over [c_l, c_r]: on a grid whose cell boundaries fall on c_l and c_r, its
+  // The limit is a complete contact over the stick zones [c_l, c_r] (one per contact zone where there are several,
+  // e.g. two asperities: paper 002 §2 allows any number): on a grid whose cell boundaries fall on c_l and c_r, its
   // corners are exact, as for a sharp punch (whole cells of the contact grid would misplace them by up to h/2).
-  const double cl = first.stick_left, cr = first.stick_right;
+  // With several zones the grid is aligned to the first; the others' corners are placed to within half a cell.
+  const std::vector<Zone> zones = contact.stick_zones();
+  auto stuck = [&zones](double x) {
+    return std::any_of(zones.begin(), zones.end(), [x](const Zone& z) { return x > z.left.x && x < z.right.x; });
+  };
+  const double cl = zones.front().left.x, cr = zones.front().right.x;
   const double h = (cr - cl) / std::max(1.0, std::round((cr - cl) / grid.h()));
   const double lo = cl - std::round((cl - grid.x_min) / h) * h;
   const Grid aligned{lo, lo + n * h, n};
@@ -230,7 +236,7 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
   std::vector<double> g0(n), g(n);
   for (int i = 0; i < n; ++i) {
     g0[i] = model.profile.gap(aligned.x(i));
-    g[i] = aligned.x(i) > cl && aligned.x(i) < cr ? g0[i] : std::numeric_limits<double>::infinity();
+    g[i] = stuck(aligned.x(i)) ? g0[i] : std::numeric_limits<double>::infinity();
   }
   ContactState state;
   const NormalSolver solver(kernel);
@@ -259,7 +265,7 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
   };
   for (int i = 0; i < n; ++i) {
     a.w[i] = on_aligned(w, grid.x(i));
-    a.p[i] = grid.x(i) > cl && grid.x(i) < cr ? on_aligned(state.p, grid.x(i)) : 0.0;
+    a.p[i] = stuck(grid.x(i)) ? on_aligned(state.p, grid.x(i)) : 0.0;
   }
   return a;
 }

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "contact/contact_zones.hpp"
 #include "contact/normal_solver.hpp"
 #include "engine/scene.hpp"
 #include "wear/contact_response.hpp"
@@ -109,6 +110,9 @@ class AnalogyContactResponse : public wear::ContactResponse {
   SolveSummary last_unconverged;
   // The last normal and corrective pressures (for records).
   const std::vector<double>& corrective_pressure() const { return corrective_.p; }
+  // The stick zones of the last cycle, one per run of the corrective contact (several where the contact has
+  // several zones); the CycleResponse carries only their span.
+  const std::vector<Zone>& stick_zones() const { return stick_zones_; }
   // The warm starts of the solves and the counts below, for checkpoints.
   nlohmann::json save() const;
   void restore(const nlohmann::json& j);
@@ -131,6 +135,7 @@ class AnalogyContactResponse : public wear::ContactResponse {
   double tilt_ = 0.0, corrective_load_ = 0.0;
   ContactState normal_, corrective_, implicit_;
   std::vector<double> gap_;
+  std::vector<Zone> stick_zones_;
 };
 
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal);

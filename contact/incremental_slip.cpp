@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "contact/contact_zones.hpp"
+#include "contact/coupling_kernel.hpp"
 #include "contact/error.hpp"
 
 namespace fretwear {
@@ -26,6 +27,11 @@ std::string IncrementalSlipOptions::validate() const {
   if (!(tolerance > 0.0 && tolerance <= 1e-2))
     return fmt::format("tolerance = {} is outside (0, 1e-2]", tolerance);
   if (max_iterations < 1) return fmt::format("max_iterations = {} must be at least 1", max_iterations);
+  if (!(coupling_tolerance > 0.0 && coupling_tolerance <= 1e-2))
+    return fmt::format("coupling_tolerance = {} is outside (0, 1e-2]", coupling_tolerance);
+  if (max_coupling_sweeps < 1)
+    return fmt::format("max_coupling_sweeps = {} must be at least 1", max_coupling_sweeps);
+  if (auto msg = normal.validate(); !msg.empty()) return "normal." + msg;
   return {};
 }
 
@@ -302,7 +308,7 @@ std::vector<double> stick_margin(std::span<const double> hi, std::span<const dou
 }  // namespace
 
 IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, const CyclicLoad& load,
-                                               const ReferenceDatum* datum) const {
+                                               const ReferenceDatum* datum, const NormalCoupling* coupling) const {
   const Grid& grid = kernel_.grid();
   const int n = grid.n;
   const double h = grid.h();
@@ -311,6 +317,12 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
   if (!load.history.empty()) throw InputError("incremental slip: a load history is solved by solve_history()");
   if (displacement && !datum)
     throw InputError("incremental slip: displacement control needs a reference datum (the δ it prescribes)");
+  const bool coupled = coupling && coupling->beta != 0.0;
+  if (coupled && displacement)
+    throw UnsupportedError("incremental slip: displacement control of dissimilar bodies (Dundurs beta = " +
+                           fmt::format("{:.4g}", coupling->beta) + ") is not supported yet; use force control");
+  if (coupled && int(coupling->g0.size()) != n)
+    throw InputError("incremental slip: the coupled solve needs the initial gap on the grid");
   IncrementalResult result;
   if (!displacement && Q >= f * P) {
     CycleResult r;
@@ -322,7 +334,7 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
     return result;
   }
 
-  const std::vector<double>& p = contact.p;
+  std::vector<double> p = contact.p;  // moves over the cycle only when β ≠ 0
   std::vector<double> lo(n), hi(n);
   double capacity = 0.0;  // f P on the grid, summed as iterate() sums it
   for (int i = 0; i < n; ++i) {
@@ -439,11 +451,76 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
     }
   };
 
+  // β ≠ 0: one increment by block Gauss–Seidel between the normal and the tangential problems (see the header).
+  const CouplingKernel S(grid);
+  const NormalSolver normal(kernel_, options_.normal);
+  const double A_beta = coupled ? kernel_.A() * coupling->beta : 0.0;
+  ContactState normal_state;
+  normal_state.p = p;
+  auto coupled_increment = [&](const SlipIncrement& inc, int cycle, int k) {
+    const std::vector<double> p_prev = p, u_prev = state.u;
+    std::vector<double> shifted(n), coupling_u(n), u_eff(n), p_last = p, q_last = state.q;
+    IncrementState trial = state;
+    SolveSummary total;
+    double change = std::numeric_limits<double>::infinity();
+    int sweeps = 0;
+    while (change > options_.coupling_tolerance * *std::max_element(p.begin(), p.end())) {
+      if (++sweeps > options_.max_coupling_sweeps)
+        throw ConvergenceError(fmt::format(
+            "incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal and tangential solves of "
+            "dissimilar bodies (beta = {:.4g}) still change the traction by {:.3g} of the peak pressure after {} "
+            "sweeps (coupling tolerance {:.3g})",
+            where(cycle, k), inc.Q_prev, inc.Q, coupling->beta,
+            change / *std::max_element(p.begin(), p.end()), options_.max_coupling_sweeps,
+            options_.coupling_tolerance));
+      // The pressure under the current shear: gap g0 − A β S q.
+      S.apply(trial.q, coupling_u, A_beta);
+      for (int i = 0; i < n; ++i) shifted[i] = coupling->g0[i] - coupling_u[i];
+      const SolveSummary ns = normal.solve(shifted, P, normal_state);
+      if (!ns.converged())
+        throw ConvergenceError(fmt::format("incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal "
+                                           "solve stopped ({}) with residual {:.3g}",
+                                           where(cycle, k), inc.Q_prev, inc.Q, to_string(ns.termination),
+                                           ns.residual));
+      p = normal_state.p;
+      // The shear under that pressure: bounds ±f p, cells that separated drop their traction, and the pressure's
+      // coupling slip A β S (p − p_prev) enters through the previous displacement.
+      bool dropped = false;
+      for (int i = 0; i < n; ++i) {
+        hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
+        lo[i] = -hi[i];
+        if (hi[i] == 0.0 && trial.q[i] != 0.0) trial.q[i] = 0.0, dropped = true;
+      }
+      if (dropped) kernel_.apply(trial.q, trial.u);
+      for (int i = 0; i < n; ++i) shifted[i] = p[i] - p_prev[i];
+      S.apply(shifted, coupling_u, A_beta);
+      for (int i = 0; i < n; ++i) u_eff[i] = u_prev[i] - coupling_u[i];
+      const SolveSummary ts = solve_bounded(lo, hi, inc, u_eff, trial);
+      total.iterations += ts.iterations;
+      total.seconds += ts.seconds;
+      total.residual = ts.residual;
+      total.termination = ts.termination;
+      if (!ts.converged()) return total;
+      change = 0.0;
+      for (int i = 0; i < n; ++i)
+        change = std::max({change, std::abs(p[i] - p_last[i]), std::abs(trial.q[i] - q_last[i])});
+      p_last = p;
+      q_last = trial.q;
+    }
+    state = std::move(trial);
+    result.n_coupling_sweeps += sweeps;
+    result.max_coupling_sweeps = std::max(result.max_coupling_sweeps, sweeps);
+    return total;
+  };
+
   auto step = [&](double x_t, int cycle, int k) {
     SolveSummary s;
     double Qt = x_t;
     extra = 0.0;
-    if (displacement) {
+    if (coupled) {
+      s = coupled_increment({Qt, Q_prev, strain_at(Qt), strain_at(Q_prev)}, cycle, k);
+      check(s, cycle, k, Qt);
+    } else if (displacement) {
       const double delta_prev = delta_now(x_prev);
       std::tie(Qt, s) = displacement_increment(x_t, cycle, k);
       const double dQ = Qt - Q_prev;
@@ -455,6 +532,11 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
     ++result.n_increments;
     result.n_iterations += s.iterations;
     if (!(s.residual <= result.worst.residual) || result.n_increments == 1) result.worst = s;
+    double work = 0.0;
+    for (int i = 0; i < n; ++i) work += h * state.q[i] * state.dw[i];
+    result.increment_energy.push_back(work);
+    result.increment_Q.push_back(Qt);
+    result.increment_shift.push_back(state.shift + extra);
     Q_prev = Qt;
     x_prev = x_t;
     shift += state.shift + extra;
@@ -478,6 +560,7 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
       r.loop.push_back(loop_point());
     }
     double sliding = 0.0, Q_peak = std::abs(Q_prev);
+    std::vector<double> hi_unloaded = hi;
     for (int j = 1; j <= m; ++j) {
       // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
       const double xt = 2 * j <= m ? X * (1.0 - 4.0 * j / m) : X * (-1.0 + 4.0 * (j - m / 2) / m);
@@ -497,10 +580,14 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
         r.slip_travelled[i] += std::abs(dw);
         r.energy_density[i] += state.q[i] * dw;
       }
-      if (4 * j == m) r.q_unloaded = state.q;
-      if (2 * j == m) r.q_bottom = state.q;
+      if (4 * j == m) r.q_unloaded = state.q, hi_unloaded = hi;
+      if (2 * j == m) {
+        r.q_bottom = state.q;
+        if (coupled) result.p_bottom = p;
+      }
       if (4 * j == 3 * m) r.q_reloaded = state.q;
     }
+    if (coupled) result.p_top = p;
     r.q_top = state.q;
     r.Q_peak = Q_peak;
     r.slip_range.assign(n, 0.0);
@@ -513,7 +600,7 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
     const auto stick = locate_zones(grid, stick_margin(hi, r.q_top), no_corners);
     for (const Zone& z : stick) r.stick_zones.emplace_back(z.left.x, z.right.x);
     if (!stick.empty()) r.stick_zone = Interval{stick.front().left.x, stick.back().right.x};
-    const auto stick_unloaded = locate_zones(grid, stick_margin(hi, r.q_unloaded), no_corners);
+    const auto stick_unloaded = locate_zones(grid, stick_margin(hi_unloaded, r.q_unloaded), no_corners);
     if (!stick_unloaded.empty())
       r.stick_zone_unloaded = Interval{stick_unloaded.front().left.x, stick_unloaded.back().right.x};
 
@@ -530,6 +617,7 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
                               "limit (sliding amplitude {:.6g} m at delta = {:.6g} m)",
                               capacity, 0.5 * sliding, r.sliding_amplitude, X);
       r.stick_zone.reset();
+      r.stick_zones.clear();  // a cell that never slips at the window's end is no stick zone when the bodies slide
     } else if (n_backward > 0) {
       r.regime = Regime::reverse_slip;
       r.message = fmt::format("at the top of the cycle {} cells from x = {:.6g} m sit at q = -f p: the leading edge "

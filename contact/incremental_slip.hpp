@@ -1,5 +1,6 @@
-// Cyclic partial slip by load increments: the incremental route of ARCHITECTURE.md, here for similar bodies
-// (Dundurs β = 0, so the pressure p of the normal solve under the constant P is fixed) under force control, with the
+// Cyclic partial slip by load increments: the incremental route of ARCHITECTURE.md, first for similar bodies
+// (Dundurs β = 0, so the pressure p of the normal solve under the constant P is fixed; dissimilar bodies, whose
+// pressure moves with the shear, are at the end of this comment) under force control, with the
 // tangential load Q(t) cycling 0 → +Q → −Q → +Q … and a bulk tension in phase, ε(t) = ε Q(t)/Q.
 //
 // For similar bodies a shear traction q on the cells changes the relative tangential surface displacement by K q,
@@ -60,6 +61,25 @@
 // bound is clamped by the projection, after which the KKT signs say whether it slips. |Q| ≥ f P at any increment is
 // gross slip, reported without fields as under force control. The phases: top and bottom at the largest and the
 // smallest Q, "unloaded" and "reloaded" where Q first crosses their mean after the top and after the bottom.
+//
+// Dissimilar bodies (Dundurs β ≠ 0; NormalCoupling, force control under constant P): the normal and tangential
+// problems are coupled (contact/coupling_kernel.hpp derives it): on the grid
+//     g = g0 + K p − A β S q − δ,        s = K q + A β S p + ε x − λ,
+// S the exact step-kernel matrix of piecewise-constant tractions. The pressure then moves over the cycle. Each
+// increment is a block Gauss–Seidel iteration between the two problems, from the previous increment's (p, q):
+//     sweep k:  p_k = the normal solution (load P) for the gap g0 − A β S q_{k−1}, warm-started from p_{k−1};
+//               q_k = the tangential increment above with bounds ±f p_k and the pressure's coupling slip added,
+//                     Δs = K (q − q_prev) + A β S (p_k − p_prev) + Δε x − λ, warm-started from q_{k−1};
+// cells that leave the contact drop their traction, as under a load history. It stops when one sweep changes
+// neither traction by more than coupling_tolerance · max p_k:
+//     max( max_i |p_k − p_{k−1}|, max_i |q_k − q_{k−1}| ) ≤ coupling_tolerance · max_i p_k,
+// and throws ConvergenceError naming the increment after max_coupling_sweeps. One sweep contracts the error by
+// roughly β² (the coupling enters each half once), so a few sweeps suffice for |β| ≤ 0.3. The cycle starts from the
+// given contact with q = 0, as if P had been applied without friction (with friction, loading P alone on dissimilar
+// bodies builds a shear with a central stick zone, Spence 1975, which is not modelled here); the first cycle after
+// that first loading is then not yet the steady one (tests/verification/test_cycle_dissimilar.cpp: 0.1 % in energy
+// for steel on titanium), the second is. Displacement control and load histories with β ≠ 0 are not built
+// (UnsupportedError).
 #pragma once
 
 #include <complex>
@@ -83,6 +103,11 @@ struct IncrementalSlipOptions {
   int max_iterations = 20000;     // CG iterations per increment before giving up; ≥ 1
   // none: plain constrained CG; symbol: Π_W C⁻¹ Π_W on the working set (see above).
   NormalSolverOptions::Preconditioner preconditioner = NormalSolverOptions::Preconditioner::symbol;
+  // β ≠ 0 only: the block Gauss–Seidel stop, max |Δp|, |Δq| between sweeps ≤ coupling_tolerance · max p (see above);
+  // in (0, 1e-2].
+  double coupling_tolerance = 1e-8;
+  int max_coupling_sweeps = 100;  // sweeps per increment before giving up; ≥ 1
+  NormalSolverOptions normal;     // for the normal solves of the coupled increments
 
   // Empty when valid; otherwise names the field, its value and the constraint.
   std::string validate() const;
@@ -105,11 +130,26 @@ struct IncrementState {
   double shift = 0.0;         // λ of the increment: the rigid shift of the pad relative to the specimen (m)
 };
 
+// The coupling of dissimilar bodies (see the header): Dundurs β and the initial gap for the normal solves.
+struct NormalCoupling {
+  double beta = 0.0;              // Dundurs β, body 1 the pad, body 2 the specimen (elastic_pair.hpp)
+  std::span<const double> g0;     // initial gap per cell (m; +∞ where the pad has no material)
+};
+
 struct IncrementalResult {
   std::vector<CycleResult> cycles;  // one per steady cycle, top to top; CycleResult::solves holds its increments
   SolveSummary worst;               // the increment with the largest residual over the whole run
   int n_increments = 0;
   int n_iterations = 0;             // CG iterations over every increment
+  // β ≠ 0: block Gauss–Seidel sweeps over every increment, the most any increment took, and the pressure of the
+  // last cycle at its top and bottom (Pa per cell; empty when β = 0, where the pressure is the contact's).
+  int n_coupling_sweeps = 0;
+  int max_coupling_sweeps = 0;
+  std::vector<double> p_top, p_bottom;
+  std::vector<double> increment_energy;  // h Σ q Δw of every increment, the first loading's included (J/m)
+  // Q at the end of every increment (N/m) and its rigid shift λ (m; the multiplier of the load, work-conjugate to Q:
+  // over a closed cycle ∮ Q dλ is the energy dissipated, when the elastic operator is symmetric).
+  std::vector<double> increment_Q, increment_shift;
 };
 
 class IncrementalSlipSolver {
@@ -121,8 +161,10 @@ class IncrementalSlipSolver {
   // cycle in the gross_slip regime with no fields, as the analogy route does. With a datum (it must outlive the
   // call) each cycle carries its fretting loop. Throws ConvergenceError naming the cycle, the increment, Q and the
   // residual if an increment does not converge.
-  IncrementalResult solve(const ContactState& contact, const CyclicLoad& load,
-                          const ReferenceDatum* datum = nullptr) const;
+  // With a coupling whose β ≠ 0 the pressure is solved with the shear at every increment (force control only; the
+  // coupling's g0 must outlive the call); ConvergenceError also when the sweeps do not settle.
+  IncrementalResult solve(const ContactState& contact, const CyclicLoad& load, const ReferenceDatum* datum = nullptr,
+                          const NormalCoupling* coupling = nullptr) const;
   // A load history (load.history non-empty; see the header): g0 is the initial gap per cell, for the normal solves
   // at each distinct P(t), warm-started; `contact` is the normal solution under load.P, where the first loading starts.
   IncrementalResult solve_history(const ContactState& contact, const CyclicLoad& load, std::span<const double> g0,

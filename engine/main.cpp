@@ -116,11 +116,13 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
   }
   if (summary.contains("wear")) {
     const auto& w = summary["wear"];
-    std::cout << fmt::format("  wear ({}, {} stepper): {:.4g} cycles in {} steps; worn area {:.4e} m² ({:.1f} % of "
-                             "the asymptote), max depth {:.4e} m",
+    const std::string share = w["fraction_of_asymptote"].is_number()
+                                  ? fmt::format(" ({:.1f} % of the asymptote)", 100.0 * v(w["fraction_of_asymptote"]))
+                                  : std::string(" (no asymptote: see wear.asymptote_note)");
+    std::cout << fmt::format("  wear ({}, {} stepper): {:.4g} cycles in {} steps; worn area {:.4e} m²{}, max depth "
+                             "{:.4e} m",
                              w["law"].get<std::string>(), w["stepper"].get<std::string>(), v(w["cycles_reached"]),
-                             w["steps"].get<long>(), v(w["worn_area"]), 100.0 * v(w["fraction_of_asymptote"]),
-                             v(w["max_depth"]));
+                             w["steps"].get<long>(), v(w["worn_area"]), share, v(w["max_depth"]));
     if (!w["stick_zone_initial"].is_null() && !w["stick_zone_final"].is_null())
       std::cout << fmt::format("; stick zone [{:.6e}, {:.6e}] m at the first record, [{:.6e}, {:.6e}] m at the last",
                                v(w["stick_zone_initial"][0]), v(w["stick_zone_initial"][1]),
@@ -128,10 +130,13 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
     std::cout << "\n";
     if (verbose) {
       const auto& as = w["asymptote"];
-      std::cout << fmt::format("  wear asymptote (computed directly): worn area {:.4e} m², max depth {:.4e} m at "
-                               "x = {:.4e} m, worn extent [{:.6e}, {:.6e}] m\n",
-                               v(as["worn_area"]), v(as["max_depth"]), v(as["x_max_depth"]), v(as["extent"][0]),
-                               v(as["extent"][1]));
+      if (as.is_object())
+        std::cout << fmt::format("  wear asymptote (computed directly): worn area {:.4e} m², max depth {:.4e} m at "
+                                 "x = {:.4e} m, worn extent [{:.6e}, {:.6e}] m\n",
+                                 v(as["worn_area"]), v(as["max_depth"]), v(as["x_max_depth"]), v(as["extent"][0]),
+                                 v(as["extent"][1]));
+      else
+        std::cout << "  wear asymptote: none; " << w["asymptote_note"].get<std::string>() << "\n";
       if (w.contains("implicit_solves"))
         std::cout << fmt::format("  wear steps: {} accepted, {} rejected; {} implicit and {} cycle solves ({:.1f} and "
                                  "{:.1f} iterations each); explicit stability limit {:.4g} cycles per step\n",

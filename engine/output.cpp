@@ -173,13 +173,15 @@ set xrange [{}:{}]
   return out;
 }
 
-// One row per wear record (SI); the stick-zone ends are empty when the contact slips everywhere.
+// One row per wear record (SI); the stick-zone ends are empty when the contact slips everywhere, the fraction when
+// there is no asymptote (displacement control).
 std::string wear_history_csv(const WearStage& w) {
   std::string s = "cycles,worn_area_m2,max_depth_m,fraction_of_asymptote,stick_left_m,stick_right_m,contact_left_m,"
                   "contact_right_m,p_max_Pa\n";
+  const bool asymptote = w.asymptote.unavailable.empty();
   for (const WearRecord& r : w.records)
     s += fmt::format("{},{},{},{},{},{},{},{},{}\n", num(r.cycles), num(r.worn_area), num(r.max_depth),
-                     num(r.fraction), r.stick_zone ? num(r.stick_zone->first) : "",
+                     asymptote ? num(r.fraction) : "", r.stick_zone ? num(r.stick_zone->first) : "",
                      r.stick_zone ? num(r.stick_zone->second) : "", num(r.contact.first), num(r.contact.second),
                      num(r.p_max));
   return s;
@@ -351,8 +353,12 @@ set datafile separator ','
 set xlabel 'crack length l (µm)'
 set grid
 set key outside right top
-set title "{}: crack at x = {:.4g} mm ({}), normal to the surface" noenhanced
-)", scene.name, r.crack_x * 1e3, scene.crack->at == "x" ? "given" : scene.crack->at);
+set title "{}: crack at x = {:.4g} mm ({}), {}" noenhanced
+)", scene.name, r.crack_x * 1e3, scene.crack->at == "x" ? "given" : scene.crack->at,
+                              scene.crack->angle_deg == 90.0
+                                  ? std::string("normal to the surface")
+                                  : fmt::format("at {:g}° to the surface, face friction {:g}", scene.crack->angle_deg,
+                                                scene.crack->face_friction));
   for (const char* mode : {"K_I", "K_II"}) {
     const int col = std::string(mode) == "K_I" ? 4 : 6;
     std::string plot = "plot ";
@@ -438,8 +444,13 @@ set grid
                    scene.name, law, scene.wear->coefficient, scene.wear->pad_fraction);
   s += "set ylabel 'wear depth w (µm)'\nset yrange [0:*]\n";
   s += svg_and_png("wear_depth", series("$4*1e6", "asymptote"));
-  s += fmt::format("set title \"{}: contact pressure as the slip zones wear (the asymptote's is singular at the "
-                   "stick-zone ends)\" noenhanced\n", scene.name);
+  if (a.unavailable.empty())
+    s += fmt::format("set title \"{}: contact pressure as the slip zones wear (the asymptote's is singular at the "
+                     "stick-zone ends)\" noenhanced\n", scene.name);
+  else  // displacement control: no asymptote; in gross slip no stick zone, and the whole contact wears
+    s += fmt::format("set title \"{}: contact pressure as the contact wears ({})\" noenhanced\n", scene.name,
+                     w.records.front().stick_zone ? "no asymptote under displacement control"
+                                                  : "gross slip: no stick zone, no asymptote");
   s += "set ylabel 'pressure p (MPa)'\n";
   s += svg_and_png("wear_pressure", series("$7*1e-6", "asymptote"));
 
@@ -492,11 +503,22 @@ set grid
       s += fmt::format("set y2range [0:{}]\nset y2label 'fraction of the asymptote'\nset ytics nomirror\n"
                        "set y2tics\n", area_top / a.worn_area);
   }
+  // Without an asymptote (displacement control) the dashed line is the initial rate c ∫ p s dx carried on: the
+  // worn area of uniform wear at the rate of the unworn contact (Archard, for sliding: k P s N).
+  double rate0 = 0.0;
+  for (std::size_t i = 0; i < w.records.front().p.size(); ++i)
+    rate0 += w.rate_coefficient * w.records.front().p[i] * w.records.front().s[i] * n.grid.h();
+  const std::string reference = a.unavailable.empty()
+                                    ? fmt::format("{} with lines lw 2 dt 2 lc rgb '#000000' title 'asymptote'",
+                                                  num(a.worn_area * 1e12))
+                                    : fmt::format("{}*x with lines lw 2 dt 2 lc rgb '#000000' title 'initial rate "
+                                                  "c ∫ p s dx, times N'",
+                                                  num(rate0 * 1e12));
   s += svg_and_png("wear_area",
-                   fmt::format("plot {} with lines lw 2 dt 2 lc rgb '#000000' title 'asymptote', "
+                   fmt::format("plot {} , "
                                "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($2*1e12) with linespoints pt 7 "
                                "ps 0.7 lw 1.5 lc rgb '#1f77b4' title 'fretwear'\n",
-                               num(a.worn_area * 1e12)));
+                               reference));
   return s;
 }
 

@@ -668,8 +668,9 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.history (the analogy needs a "
                            "constant P and Q between fixed limits); use \"auto\" or \"incremental\"");
       if (s.wear)
-        problems.push_back("effects.wear: the wear stage cycles Q between fixed limits; load.history with wear is not "
-                           "supported yet");
+        problems.push_back("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
+                           "repeated between fixed limits of Q (load.Q) or of the displacement (load.control "
+                           "\"displacement\" with load.delta)");
       if (s.stress || s.crack)
         problems.push_back("effects.stress, effects.crack: their top and bottom phases assume the in-phase cycle of "
                            "load.Q; with load.history they are not supported yet");
@@ -680,6 +681,11 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       if (s.delta)
         problems.push_back("load.delta: given, but load.control is \"force\"; set load.control to \"displacement\" "
                            "or remove load.delta");
+      if (s.wear && s.friction && s.P > 0.0 && s.Q_max() >= *s.friction * s.P)
+        problems.push_back(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
+                                       "under force control the slip, hence the wear, is not determined; prescribe "
+                                       "the displacement instead (load.control \"displacement\" with load.delta)",
+                                       s.Q_max(), *s.friction * s.P));
     } else {
       if (!s.delta)
         problems.push_back("load.delta: missing; load.control \"displacement\" needs the amplitude of the relative "
@@ -689,16 +695,25 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.control \"displacement\" (the "
                            "analogy needs Q between fixed limits); use \"auto\" or \"incremental\"");
-      if (s.wear)
-        problems.push_back("effects.wear: the wear stage cycles Q between fixed limits; load.control "
-                           "\"displacement\" with wear is not supported yet");
     }
     const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
-    if (std::abs(pair.beta()) > 1e-12)
-      problems.push_back(fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the normal and "
-                                     "tangential problems, which no route models yet (the incremental route takes similar "
-                                     "bodies, beta = 0): not supported yet",
-                                     pair.beta()));
+    // Dissimilar bodies: the incremental route couples the normal and tangential problems under force control.
+    if (std::abs(pair.beta()) > 1e-12) {
+      const std::string dissimilar = fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the "
+                                                 "normal and tangential problems",
+                                                 pair.beta());
+      if (s.tangential->route == TangentialRoute::analogy)
+        problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
+                                        "use \"auto\" or \"incremental\"");
+      if (s.control == LoadControl::displacement || history_given)
+        problems.push_back(dissimilar + "; the incremental route solves them under force control with Q between "
+                                        "fixed limits, and load.control \"displacement\" or load.history with beta "
+                                        "!= 0 is not supported yet");
+      if (s.wear || s.stress || s.crack)
+        problems.push_back(dissimilar + "; effects.wear, effects.stress and effects.crack use the pressure of the "
+                                        "uncoupled normal solve and the analogy's cycle, and with beta != 0 are not "
+                                        "supported yet");
+    }
   } else {
     if (s.Q_amplitude || s.Q_ratio)
       problems.push_back("load.Q: given, but no effect uses it; add \"tangential\": {} to effects or remove load.Q");

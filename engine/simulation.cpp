@@ -195,7 +195,13 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   if (route == TangentialRoute::analogy && (displacement || history))  // parse_scene refuses it too
     throw UnsupportedError("effects.tangential: route \"analogy\" cannot run load.control \"displacement\" or "
                            "load.history; use \"auto\" or \"incremental\"");
-  if (route != TangentialRoute::incremental && !displacement && !history) {
+  // Dissimilar bodies (Dundurs β ≠ 0): normal and tangential problems coupled, the incremental route only.
+  const bool dissimilar = std::abs(pair.beta()) > 1e-12;
+  if (route == TangentialRoute::analogy && dissimilar)  // parse_scene refuses it too
+    throw UnsupportedError(fmt::format("effects.tangential: route \"analogy\" needs similar bodies, and Dundurs beta "
+                                       "= {:.4g}; use \"auto\" or \"incremental\"",
+                                       pair.beta()));
+  if (route != TangentialRoute::incremental && !displacement && !history && !dissimilar) {
     stage.route = "analogy";
     stage.result = TangentialSolver(*model.kernel).solve_cycle(model.g0, normal.state, normal.zones, load);
     if (stage.result.regime == Regime::partial_slip) analogy_delta_max(model, normal, load, datum, stage.result);
@@ -208,13 +214,19 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   // whatever the analogy cannot do). The steady cycle is the second, after the first loading and one full cycle.
   IncrementalSlipOptions options;
   options.increments_per_cycle = scene.tangential->increments;
+  if (dissimilar) options.cycles = 2;  // β ≠ 0: the first cycle after the first loading is not yet the steady one
   const IncrementalSlipSolver solver(*model.kernel, options);
+  const NormalCoupling coupling{dissimilar ? pair.beta() : 0.0, model.g0};
   const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum)
-                                      : solver.solve(normal.state, load, &datum);
+                                      : solver.solve(normal.state, load, &datum, &coupling);
   stage.route = route == TangentialRoute::incremental ? "incremental"
                 : displacement ? "incremental (auto: displacement control)"
                 : history      ? "incremental (auto: load history)"
+                : dissimilar   ? "incremental (auto: dissimilar bodies)"
                                : "incremental (auto: the analogy found reverse slip)";
+  if (dissimilar)
+    stage.route += fmt::format(" [beta = {:.4g}: {} coupling sweeps over {} increments, at most {}]", pair.beta(),
+                               r.n_coupling_sweeps, r.n_increments, r.max_coupling_sweeps);
   stage.result = r.cycles.back();
   if ((displacement || history) && !stage.result.slip_range.empty())
     stage.Q_max = stage.result.Q_peak;  // the peak Q reached
@@ -441,7 +453,7 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
         {"cycles", last.cycles},
         {"worn_area", last.worn_area},
         {"max_depth", last.max_depth},
-        {"fraction_of_asymptote", last.fraction},
+        {"fraction_of_asymptote", w.asymptote.unavailable.empty() ? json(last.fraction) : json(nullptr)},
         {"stick_zone_initial", interval(w.records.front().stick_zone)},
         {"stick_zone_final", interval(last.stick_zone)},
         {"contact_final", {last.contact.first, last.contact.second}},
@@ -459,6 +471,14 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
           {"x_max_depth", w.asymptote.x_max_depth},
           {"extent", {w.asymptote.extent.first, w.asymptote.extent.second}}}}};
     // Where the run got to (the last record is wear.cycles); an interrupted run stops short of cycles_target.
+    // The cycle's route on the worn profile; without an asymptote (displacement control), null and the reason.
+    summary["wear"]["route"] = w.route;
+    summary["wear"]["Q_max_initial"] = w.records.front().Q_max;
+    summary["wear"]["Q_max_final"] = last.Q_max;
+    if (!w.asymptote.unavailable.empty()) {
+      summary["wear"]["asymptote"] = nullptr;
+      summary["wear"]["asymptote_note"] = w.asymptote.unavailable;
+    }
     summary["wear"]["cycles_target"] = e.cycles;
     summary["wear"]["cycles_reached"] = w.cycles_reached;
     if (w.resumed_from) summary["wear"]["resumed_from"] = *w.resumed_from;

@@ -9,6 +9,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <memory>
 
 #include <boost/numeric/odeint/integrate/max_step_checker.hpp>
 #include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
@@ -25,6 +26,23 @@
 
 namespace fretwear {
 
+bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model, double P,
+                                 std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
+  const int n = model.grid.n;
+  gap_.resize(n);
+  for (int i = 0; i < n; ++i) gap_[i] = model.g0[i] + w[i];
+  implicit_.p = p;
+  const SolveSummary s = solver.solve(gap_, P, implicit_, d);
+  ++implicit_solves;
+  implicit_iterations += s.iterations;
+  if (!s.converged()) {
+    last_unconverged = s;
+    return false;
+  }
+  p = implicit_.p;
+  return true;
+}
+
 AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model)
     : scene_(scene), model_(model), solver_(*model.kernel), implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
   const double f = *scene.friction;
@@ -33,9 +51,10 @@ AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& 
   tilt_ = bulk_strain / f;
   corrective_load_ = scene.P - scene.Q_max() / f;
   if (!(corrective_load_ > 0.0))
-    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P: the bodies slide, and wear in gross "
-                                       "slip needs displacement control, which is not supported yet",
-                                       scene.Q_max()));
+    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
+                                       "under force control the slip, hence the wear, is not determined; prescribe "
+                                       "the displacement instead (load.control \"displacement\" with load.delta)",
+                                       scene.Q_max(), f * scene.P));
 }
 
 int AnalogyContactResponse::cells() const { return model_.grid.n; }
@@ -59,12 +78,15 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   const double f = *scene_.friction;
   out.p = normal_.p;
   out.s.assign(n, 0.0);
+  q_top_.resize(n);  // q = f (p − p*) at the top of the cycle
   for (int i = 0; i < n; ++i) {
     if (corrective_.p[i] > 0.0 && !(normal_.p[i] > 0.0))
       throw UnsupportedError(fmt::format("effects.wear: the worn contact slips backwards at its leading edge (reverse "
-                                         "slip at x = {:.6g} m), which needs the incremental route, not supported yet",
+                                         "slip at x = {:.6g} m), which the analogy route cannot follow; set "
+                                         "effects.tangential.route to \"incremental\"",
                                          grid.x(i)));
     if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
+    q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
   }
   stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);
   out.has_stick = !stick_zones_.empty();
@@ -73,19 +95,88 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
 
 bool AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
                                                std::vector<double>& p) {
-  const int n = model_.grid.n;
+  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
+}
+
+bool wear_uses_incremental(const Scene& scene) {
+  return scene.control == LoadControl::displacement ||
+         (scene.tangential && scene.tangential->route == TangentialRoute::incremental);
+}
+
+namespace {
+
+IncrementalSlipOptions incremental_options(const Scene& scene) {
+  IncrementalSlipOptions o;
+  o.increments_per_cycle = scene.tangential->increments;
+  return o;
+}
+
+CyclicLoad incremental_load(const Scene& scene, const Model& model) {
+  const double strain =
+      scene.bulk_stress * (model.pair.kappa_specimen() + 1.0) / (8.0 * model.pair.mu_specimen());
+  const bool displacement = scene.control == LoadControl::displacement;
+  return {scene.P, displacement ? 0.0 : scene.Q_max(), *scene.friction, strain, displacement ? *scene.delta : 0.0};
+}
+
+}  // namespace
+
+IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x,
+                                                       double reference_depth)
+    : scene_(scene),
+      model_(model),
+      solver_(*model.kernel),
+      implicit_solver_(*model.kernel, implicit_options(model.grid.n)),
+      slip_(*model.kernel, incremental_options(scene)),
+      datum_(model.grid, model.pair, reference_x, reference_depth),
+      load_(incremental_load(scene, model)) {
+  if (!scene.history.empty())
+    throw UnsupportedError("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
+                           "repeated between fixed limits of Q or of the displacement");
+  if (scene.control == LoadControl::force && !(scene.Q_max() < *scene.friction * scene.P))
+    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
+                                       "under force control the slip, hence the wear, is not determined; prescribe "
+                                       "the displacement instead (load.control \"displacement\" with load.delta)",
+                                       scene.Q_max(), *scene.friction * scene.P));
+}
+
+int IncrementalContactResponse::cells() const { return model_.grid.n; }
+double IncrementalContactResponse::cell_width() const { return model_.grid.h(); }
+
+void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
+  const Grid& grid = model_.grid;
+  const int n = grid.n;
   gap_.resize(n);
   for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
-  implicit_.p = p;
-  const SolveSummary s = implicit_solver_.solve(gap_, scene_.P, implicit_, d);
-  ++implicit_solves;
-  implicit_iterations += s.iterations;
-  if (!s.converged()) {
-    last_unconverged = s;
-    return false;
-  }
-  p = implicit_.p;
-  return true;
+  const SolveSummary s = solver_.solve(gap_, scene_.P, normal_);
+  ++cycle_solves;
+  cycle_iterations += s.iterations;
+  if (!s.converged())
+    throw ConvergenceError(fmt::format("wear: the normal solve on the worn profile stopped ({}) with residual {:.3g}",
+                                       to_string(s.termination), s.residual));
+  if (normal_.p.front() > 0.0 || normal_.p.back() > 0.0)
+    throw InputError(fmt::format("grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the "
+                                 "contact widens as it wears (in gross slip without limit): widen grid.window, or "
+                                 "wear fewer cycles",
+                                 normal_.p.front() > 0.0 ? "left" : "right",
+                                 normal_.p.front() > 0.0 ? grid.x_min : grid.x_max));
+  const IncrementalResult r = slip_.solve(normal_, load_, &datum_);
+  cycle_solves += r.n_increments;
+  cycle_iterations += r.n_iterations;
+  cycle_ = r.cycles.back();
+  if (cycle_.slip_travelled.empty())  // force control at Q ≥ f P: refused by the constructor
+    throw UnsupportedError("effects.wear: " + cycle_.message);
+  out.p = normal_.p;
+  out.s = cycle_.slip_travelled;
+  for (int i = 0; i < n; ++i)
+    if (!(normal_.p[i] > 0.0)) out.s[i] = 0.0;
+  out.has_stick = cycle_.stick_zone.has_value();
+  out.stick_left = out.stick_right = 0.0;
+  if (out.has_stick) out.stick_left = cycle_.stick_zone->first, out.stick_right = cycle_.stick_zone->second;
+}
+
+bool IncrementalContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
+                                                   std::vector<double>& p) {
+  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
 }
 
 namespace {
@@ -130,6 +221,26 @@ json AnalogyContactResponse::save() const {
 void AnalogyContactResponse::restore(const json& j) {
   state_from(j.at("normal"), normal_);
   state_from(j.at("corrective"), corrective_);
+  state_from(j.at("implicit"), implicit_);
+  cycle_solves = j.at("cycle_solves").get<long>();
+  cycle_iterations = j.at("cycle_iterations").get<long>();
+  implicit_solves = j.at("implicit_solves").get<long>();
+  implicit_iterations = j.at("implicit_iterations").get<long>();
+}
+
+json IncrementalContactResponse::save() const {
+  return {{"route", "incremental"},
+          {"normal", state_json(normal_)},
+          {"implicit", state_json(implicit_)},
+          {"cycle_solves", cycle_solves},
+          {"cycle_iterations", cycle_iterations},
+          {"implicit_solves", implicit_solves},
+          {"implicit_iterations", implicit_iterations}};
+}
+
+void IncrementalContactResponse::restore(const json& j) {
+  if (j.value("route", "") != "incremental") throw InputError("checkpoint: written by the analogy route's wear run");
+  state_from(j.at("normal"), normal_);
   state_from(j.at("implicit"), implicit_);
   cycle_solves = j.at("cycle_solves").get<long>();
   cycle_iterations = j.at("cycle_iterations").get<long>();
@@ -209,12 +320,25 @@ void write_checkpoint(const std::filesystem::path& path, const json& j) {
 }
 
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal) {
+  WearAsymptote a;
+  if (scene.control == LoadControl::displacement) {
+    a.unavailable = "under displacement control Q_max follows the prescribed displacement as the contact wears, so the "
+                    "stick zone is not the initial one: paper 002's asymptote (complete contact over the initial "
+                    "stick zone under a fixed Q) does not apply. In partial slip the wear still stops, at a complete "
+                    "contact over a stick zone whose Q is the one the displacement gives (not computed); in gross "
+                    "slip there is no stick zone and the wear never stops";
+    return a;
+  }
   // The stick zone of the first cycle, located to sub-cell accuracy.
   AnalogyContactResponse contact(scene, model);
   wear::CycleResponse first;
-  contact.respond(std::vector<double>(model.grid.n, 0.0), first);
+  try {
+    contact.respond(std::vector<double>(model.grid.n, 0.0), first);
+  } catch (const UnsupportedError& e) {  // reverse slip: the incremental route wears it, with no asymptote here
+    a.unavailable = std::string("the analogy route cannot give the initial stick zone: ") + e.what();
+    return a;
+  }
   (void)normal;
-  WearAsymptote a;
   const Grid& grid = model.grid;
   const int n = grid.n;
   a.w.assign(n, 0.0);
@@ -346,6 +470,7 @@ json record_json(const WearRecord& r) {
           {"worn_area", r.worn_area},
           {"max_depth", r.max_depth},
           {"p_max", r.p_max},
+          {"Q_max", r.Q_max},
           {"stick_zone", r.stick_zone ? json{r.stick_zone->first, r.stick_zone->second} : json(nullptr)},
           {"contact", {r.contact.first, r.contact.second}},
           {"fraction", r.fraction},
@@ -361,6 +486,7 @@ WearRecord record_from(const json& j) {
   r.worn_area = j.at("worn_area").get<double>();
   r.max_depth = j.at("max_depth").get<double>();
   r.p_max = j.at("p_max").get<double>();
+  r.Q_max = j.value("Q_max", 0.0);
   if (!j.at("stick_zone").is_null()) r.stick_zone = Interval{j["stick_zone"][0], j["stick_zone"][1]};
   r.contact = {j.at("contact")[0].get<double>(), j.at("contact")[1].get<double>()};
   r.fraction = j.at("fraction").get<double>();
@@ -381,7 +507,19 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.rate_coefficient = law.rate_coefficient();
   stage.asymptote = wear_asymptote(scene, model, normal);
 
-  AnalogyContactResponse contact(scene, model);
+  std::unique_ptr<WearContact> chosen;
+  if (wear_uses_incremental(scene)) {
+    // The datum of the cycle stage (engine/simulation.cpp, solve_cycle): the centre of the unworn contact, 10
+    // half-widths (or grid.reference_depth) below it.
+    const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
+    const double depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
+    chosen = std::make_unique<IncrementalContactResponse>(scene, model, 0.5 * (x_left + x_right), depth);
+    stage.route = "incremental";
+  } else {
+    chosen = std::make_unique<AnalogyContactResponse>(scene, model);
+    stage.route = "analogy";
+  }
+  WearContact& contact = *chosen;
   const int n = model.grid.n;
   const double h = model.grid.h();
   std::vector<double> w(n, 0.0);
@@ -402,8 +540,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     rec.w = state;
     rec.p = r.p;
     rec.s = r.s;
-    rec.q.resize(n);  // the shear at the top of the cycle, q = f (p − p*) (analogy route)
-    for (int i = 0; i < n; ++i) rec.q[i] = *scene.friction * (r.p[i] - contact.corrective_pressure()[i]);
+    rec.q = contact.shear_top();
+    rec.Q_max = contact.Q_top();
     for (int i = 0; i < n; ++i) {
       rec.worn_area += state[i] * h;
       rec.max_depth = std::max(rec.max_depth, state[i]);

@@ -1,5 +1,6 @@
-// The wear stage of a scene: the contact seen by wear (the analogy route on the worn profile), the asymptotic state
-// computed directly, and the run driven through Boost.Odeint with records.
+// The wear stage of a scene: the contact seen by wear (the analogy route on the worn profile, or the incremental
+// route under displacement control), the asymptotic state computed directly, and the run driven through
+// Boost.Odeint with records.
 #pragma once
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,7 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/contact_zones.hpp"
+#include "contact/incremental_slip.hpp"
 #include "contact/normal_solver.hpp"
+#include "contact/reference_datum.hpp"
 #include "engine/scene.hpp"
 #include "wear/contact_response.hpp"
 #include "wear/implicit_stepper.hpp"
@@ -28,8 +32,13 @@ struct NormalResult;
 using Interval = std::pair<double, double>;
 
 // The asymptotic state of paper 002 (PHYSICS.md, "Wear"): complete contact over the initial stick zone on the
-// original profile; the worn depth is the overlap it leaves outside.
+// original profile; the worn depth is the overlap it leaves outside. It assumes a stick zone that stays where it
+// started, which holds under force control (Q between fixed limits); under displacement control Q_max changes as the
+// contact wears and the stick zone moves with it (in partial slip the wear still stops, at a limit this does not
+// compute; in gross slip there is no stick zone and wear never stops), so the state is not computed there and
+// `unavailable` says why (w and p are then empty).
 struct WearAsymptote {
+  std::string unavailable;     // empty when computed; otherwise the reason it is not
   std::vector<double> p;       // pressure (Pa), zero outside the stick zone
   std::vector<double> w;       // worn depth, both bodies (m)
   double worn_area = 0.0;      // ∫ w dx (m²)
@@ -42,9 +51,11 @@ struct WearAsymptote {
 struct WearRecord {
   double cycles = 0.0;
   double worn_area = 0.0, max_depth = 0.0, p_max = 0.0;
+  double Q_max = 0.0;  // the tangential load at the top of the cycle (N/m): the scene's under force control, the one
+                       // the prescribed δ gives on the worn profile under displacement control
   std::optional<Interval> stick_zone;
   Interval contact{0.0, 0.0};
-  double fraction = 0.0;  // worn area over the asymptote's
+  double fraction = 0.0;  // worn area over the asymptote's (0 without one)
   std::vector<double> w, p, s;  // per cell
   std::vector<double> q;        // shear traction at the top of the cycle per cell (Pa); the bottom is −q
 };
@@ -53,6 +64,7 @@ struct WearStage {
   std::vector<WearRecord> records;
   WearAsymptote asymptote;
   double rate_coefficient = 0.0;    // c in dw/dN = c p s (1/Pa)
+  std::string route;                // the cycle's route on the worn profile: "analogy" or "incremental"
   double stability_limit = 0.0;     // the explicit jump limit 1.5 Δx/(E* c s_max) at the start (cycles)
   double explicit_step_cap = 0.0;   // stepper "explicit": the cap on ΔN, kExplicitCapFraction · stability_limit
                                     // (cycles); 0 for the other steppers
@@ -98,31 +110,24 @@ std::optional<nlohmann::json> read_checkpoint(const std::filesystem::path& path,
 // Writes j atomically (temporary file, fsync, rename, fsync of the folder).
 void write_checkpoint(const std::filesystem::path& path, const nlohmann::json& j);
 
-// The steady-cycle slip and stick zone on a worn profile, by the analogy route (similar bodies, constant P).
-class AnalogyContactResponse : public wear::ContactResponse {
+// What run_wear needs of a contact besides wear::ContactResponse: the shear at the top of the last cycle solved
+// (records), the warm starts of its solves (checkpoints) and its counts.
+class WearContact : public wear::ContactResponse {
  public:
-  AnalogyContactResponse(const Scene& scene, const Model& model);
-  int cells() const override;
-  double cell_width() const override;
-  void respond(std::span<const double> w, wear::CycleResponse& out) override;
-  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
+  // The shear traction at the top of the cycle of the last respond() per cell (Pa); the bottom is its reverse.
+  virtual const std::vector<double>& shear_top() const = 0;
+  // The tangential load at the top of the cycle of the last respond() (N/m).
+  virtual double Q_top() const = 0;
+  // The warm starts of the solves and the counts below, for checkpoints.
+  virtual nlohmann::json save() const = 0;
+  virtual void restore(const nlohmann::json& j) = 0;
   // The last contact-implicit solve that did not converge (its termination and residual), for the error message.
   SolveSummary last_unconverged;
-  // The last normal and corrective pressures (for records).
-  const std::vector<double>& corrective_pressure() const { return corrective_.p; }
-  // The stick zones of the last cycle, one per run of the corrective contact (several where the contact has
-  // several zones); the CycleResponse carries only their span.
-  const std::vector<Zone>& stick_zones() const { return stick_zones_; }
-  // The warm starts of the solves and the counts below, for checkpoints.
-  nlohmann::json save() const;
-  void restore(const nlohmann::json& j);
-  // Solves and their CG iterations, by kind: the cycle (normal and corrective) and the contact-implicit steps.
+  // Solves and their CG iterations, by kind: the cycle (normal and corrective solves, or slip increments) and the
+  // contact-implicit steps.
   long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
 
- private:
-  const Scene& scene_;
-  const Model& model_;
-  NormalSolver solver_;
+ protected:
   // The contact-implicit solves give up sooner than the cycle's: a step whose solve does not converge is retried
   // with a smaller jump (wear/implicit_stepper.hpp), which is cheaper than iterating on a badly conditioned one.
   // Converging solves take tens to about 1500 iterations at 4096 cells; the limit grows with the grid.
@@ -131,12 +136,82 @@ class AnalogyContactResponse : public wear::ContactResponse {
     o.max_iterations = std::max(2000, cells);
     return o;
   }
+  // The end-of-step pressure of wear::ContactResponse::implicit_pressure, with `solver` (route-independent for
+  // similar bodies: the pressure does not depend on the shear).
+  bool solve_implicit(const NormalSolver& solver, const Model& model, double P, std::span<const double> w,
+                      std::span<const double> d, std::vector<double>& p);
+  ContactState implicit_;
+  std::vector<double> gap_;
+};
+
+// The steady-cycle slip and stick zone on a worn profile, by the analogy route (similar bodies, constant P).
+class AnalogyContactResponse : public WearContact {
+ public:
+  AnalogyContactResponse(const Scene& scene, const Model& model);
+  int cells() const override;
+  double cell_width() const override;
+  void respond(std::span<const double> w, wear::CycleResponse& out) override;
+  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
+  const std::vector<double>& shear_top() const override { return q_top_; }
+  double Q_top() const override { return scene_.Q_max(); }
+  // The last corrective pressure (for records).
+  const std::vector<double>& corrective_pressure() const { return corrective_.p; }
+  // The stick zones of the last cycle, one per run of the corrective contact (several where the contact has
+  // several zones); the CycleResponse carries only their span.
+  const std::vector<Zone>& stick_zones() const { return stick_zones_; }
+  nlohmann::json save() const override;
+  void restore(const nlohmann::json& j) override;
+
+ private:
+  const Scene& scene_;
+  const Model& model_;
+  NormalSolver solver_;
   NormalSolver implicit_solver_;
   double tilt_ = 0.0, corrective_load_ = 0.0;
-  ContactState normal_, corrective_, implicit_;
-  std::vector<double> gap_;
+  ContactState normal_, corrective_;
+  std::vector<double> q_top_;
   std::vector<Zone> stick_zones_;
 };
+
+// The steady cycle on a worn profile by the incremental route (contact/incremental_slip.hpp): similar bodies under
+// the scene's control, force or displacement (load.control, load.delta), through the onset of gross slip. respond(w)
+// solves the normal contact of g0 + w under P (warm-started from the last), then marches the first loading and one
+// cycle; the second of those is the steady cycle, whose slip travelled per cell is s (in gross slip, 4 times the
+// sliding amplitude plus the elastic part, over the whole contact; no stick zone). The reference points of δ are
+// those of the cycle stage (centre of the unworn contact, reference_depth below), fixed in the bodies as they wear.
+// The marching itself starts from rest each time (it is fast and has no warm start); the normal and contact-implicit
+// solves are warm-started, and save()/restore() carry those starts.
+class IncrementalContactResponse : public WearContact {
+ public:
+  // reference_x, reference_depth: the datum (m), as CycleStage has them.
+  IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x, double reference_depth);
+  int cells() const override;
+  double cell_width() const override;
+  // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
+  void respond(std::span<const double> w, wear::CycleResponse& out) override;
+  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
+  const std::vector<double>& shear_top() const override { return cycle_.q_top; }
+  double Q_top() const override { return cycle_.Q_peak; }
+  // The steady cycle of the last respond().
+  const CycleResult& last_cycle() const { return cycle_; }
+  nlohmann::json save() const override;
+  void restore(const nlohmann::json& j) override;
+
+ private:
+  const Scene& scene_;
+  const Model& model_;
+  NormalSolver solver_;
+  NormalSolver implicit_solver_;
+  IncrementalSlipSolver slip_;
+  ReferenceDatum datum_;
+  CyclicLoad load_;
+  ContactState normal_;
+  CycleResult cycle_;
+};
+
+// Whether the wear stage runs the cycle by the incremental route: under displacement control, or when the scene
+// asks for that route.
+bool wear_uses_incremental(const Scene& scene);
 
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal);
 

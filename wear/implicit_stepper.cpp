@@ -46,10 +46,17 @@ controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& conta
     return controlled_step_result::fail;
   }
 
+  // A cell that starts to wear within the step (it enters the contact or the slip zone in the first half: no slip at
+  // w_n, so the one step of ΔN does not wear it, the second half step does) has worn between one and two times the
+  // half steps' increment (it entered between N and N + ΔN/2). Extrapolating would take the upper end; the midpoint
+  // is kept, and the half-width of that range is its error. Elsewhere the Richardson difference is the error.
+  // (No slip at w_n, so the one step did not wear the cell; the two half steps did.)
+  auto starts_wearing = [this](std::size_t i, double two) { return response_.s[i] == 0.0 && two > 0.0; };
   double diff = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < w.size(); ++i) scale = std::max(scale, std::abs(w_two_[i]));
   for (std::size_t i = 0; i < w.size(); ++i) {
-    diff = std::max(diff, std::abs(w_two_[i] - w_full_[i]));
-    scale = std::max(scale, std::abs(w_two_[i]));
+    const double full = w_full_[i] - w[i], two = w_two_[i] - w[i];
+    diff = std::max(diff, starts_wearing(i, two) ? 0.5 * two : std::abs(two - full));
   }
   const double err = scale > 0.0 ? diff / (tolerance_ * scale) : 0.0;
   stats_.last_error = err;
@@ -58,7 +65,10 @@ controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& conta
     dN *= std::clamp(0.9 / std::sqrt(err), 0.2, 0.9);
     return controlled_step_result::fail;
   }
-  for (std::size_t i = 0; i < w.size(); ++i) w[i] = std::max(w[i], 2.0 * w_two_[i] - w_full_[i]);
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const double two = w_two_[i] - w[i];
+    w[i] = starts_wearing(i, two) ? w[i] + 1.5 * two : std::max(w[i], 2.0 * w_two_[i] - w_full_[i]);
+  }
   N += dN;
   dN *= err > 0.0 ? std::clamp(0.9 / std::sqrt(err), 1.0, 4.0) : 4.0;
   ++stats_.accepted;

@@ -251,13 +251,17 @@ TEST_CASE("tangential loads without the tangential effect are errors, not ignore
   CHECK(reports(j, "load.bulk_stress", {"no effect uses it"}));
 }
 
-TEST_CASE("dissimilar bodies need the incremental route, which is not built yet") {
+TEST_CASE("dissimilar bodies take the incremental route: the analogy, displacement control and wear are refused") {
   json j = good();
   j["materials"] = {{"pad", {{"E", 2e11}, {"nu", 0.3}}}, {"specimen", {{"E", 7e10}, {"nu", 0.33}}}};
   j["friction"] = 0.5;
   j["load"]["Q"] = {{"ratio", 0.5}};
   j["effects"] = {{"tangential", json::object()}};
-  CHECK(reports(j, "materials", {"beta", "not supported yet"}));
+  CHECK_NOTHROW(parse_scene(j));
+  j["effects"] = {{"tangential", {{"route", "analogy"}}}};
+  CHECK(reports(j, "materials", {"beta", "analogy", "needs similar bodies"}));
+  j["effects"] = {{"tangential", json::object()}, {"wear", {{"law", "archard"}, {"k", 1e-17}, {"cycles", 1e6}}}};
+  CHECK(reports(j, "materials", {"beta", "effects.wear", "not supported yet"}));
 }
 
 TEST_CASE("names must make a folder name") {

@@ -223,6 +223,7 @@ TEST_CASE("displacement control: through the onset of gross slip Q saturates at 
       CHECK(c.regime == Regime::gross_slip);
       CHECK(c.Q_peak == test::rel(fP, 1e-12));
       CHECK_FALSE(c.stick_zone);
+      CHECK(c.stick_zones.empty());  // none listed either (summary: cycle.stick_zones)
       // Linear beyond the stick limit: the sliding amplitude is δ − δ_s; each point's slip range grows by 2(δ − δ')
       // and the energy by 4 f P (δ − δ').
       CHECK(c.sliding_amplitude == test::rel(delta - delta_s, kAgreeForce));

@@ -190,3 +190,46 @@ TEST_CASE("near sliding, Q/fP = 0.999: a tiny stick zone, still exact") {
   CHECK(std::abs(r.cycle.result.stick_zone->second - c) < 0.5 * r.model.grid.h());
   CHECK(std::isfinite(r.cycle.result.dissipated_energy));
 }
+
+TEST_CASE("friction from 0.05 to 1.5: the stick zone depends on Q/fP alone, by both routes") {
+  for (double f : {0.05, 0.3, 1.0, 1.5}) {
+    CAPTURE(f);
+    Scene s = hertz_cycle(1e5, 0.6, 2048);
+    s.friction = f;
+    const Run r = run(s);
+    const auto hz = closed_form::hertz(1e5, r.model.pair.A(), kR);
+    REQUIRE(r.cycle.result.stick_zone);
+    const double c = hz.a * std::sqrt(0.4);
+    CHECK(std::abs(r.cycle.result.stick_zone->first + c) < edge_tolerance(r.model.grid));
+    CHECK(std::abs(r.cycle.result.stick_zone->second - c) < edge_tolerance(r.model.grid));
+    // The slip and the energy scale with f (PHYSICS.md: g = (f/2R)[...], E = 8 f ∫ p g dx ∝ f²).
+    s.tangential->route = TangentialRoute::incremental;
+    const Run inc = run(s);
+    REQUIRE(inc.cycle.result.stick_zone);
+    CHECK(std::abs(inc.cycle.result.stick_zone->second - c) < edge_tolerance(r.model.grid));
+    CHECK(inc.cycle.result.dissipated_energy == test::rel(r.cycle.result.dissipated_energy, 1e-5));
+    CHECK(r.cycle.result.dissipated_energy / (f * f) ==
+          test::rel(run(hertz_cycle(1e5, 0.6, 2048)).cycle.result.dissipated_energy / (kF * kF), 1e-9));
+  }
+}
+
+TEST_CASE("rounded punch a/b = 0.99: stick until almost sliding, the stick zone by eq 9") {
+  // b − a = 0.01 b: the stick zone stays on the corners, between a and b, until Q = fP.
+  const double b = 0.5e-3, a = 0.99 * b;
+  Scene s = hertz_cycle(1e5, 0.5, 4096);
+  s.profile.type = ProfileType::flat_rounded;
+  s.profile.a = a;
+  const double A = make_model(s, 256).pair.A();
+  s.P = 0.5 * closed_form::D(std::asin(0.99)) * b * b / (A * kR);
+  for (double ratio : {0.5, 0.99}) {
+    CAPTURE(ratio);
+    s.Q_ratio = ratio;
+    const Run r = run(s);
+    const double c = closed_form::rounded_punch_stick(closed_form::rounded_punch(s.P, A, a, kR), ratio);
+    REQUIRE(r.cycle.result.stick_zone);
+    CHECK(c > a);
+    // The corners span about 12 cells here; the stick edge on them is located to a cell.
+    CHECK(std::abs(r.cycle.result.stick_zone->second - c) < 1.0 * r.model.grid.h());
+    CHECK(std::abs(r.cycle.result.stick_zone->first + c) < 1.0 * r.model.grid.h());
+  }
+}

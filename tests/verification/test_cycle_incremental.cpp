@@ -14,6 +14,7 @@
 // travelled then agree to 3e-9 of the largest range and the energy to 4e-9 relative (kAgreeSlip = 1e-7; 400 against
 // 40 increments: 1e-8), and the stick-zone edges, fitted by the same square-root fit, to 8e-6 of a cell
 // (kAgreeEdge = 1e-4).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -27,6 +28,7 @@
 #include "contact/contact_zones.hpp"
 #include "contact/incremental_slip.hpp"
 #include "engine/simulation.hpp"
+#include "engine/wear_stage.hpp"
 
 using namespace fretwear;
 
@@ -308,4 +310,102 @@ TEST_CASE("incremental: a solve that stops short says so with its residual and b
   bad.increments_per_cycle = 42;
   CHECK(bad.validate().find("increments_per_cycle = 42") != std::string::npos);
   CHECK_THROWS_AS(IncrementalSlipSolver(*m.kernel, bad), InputError);
+}
+
+namespace {
+
+// The incremental route against the analogy route on scene s, on the same grid, the analogy's normal solves at
+// kTightNormal; tractions compared on the scale f p_max of the normal solution. Returns the number of stick zones.
+std::size_t compare_routes(const Scene& s) {
+  const Model m = make_model(s);
+  NormalSolverOptions tight;
+  tight.tolerance = kTightNormal;
+  ContactState contact;
+  REQUIRE(NormalSolver(*m.kernel, tight).solve(m.g0, s.P, contact).converged());
+  const auto zones = locate_zones(m.grid, contact.p, m.g0);
+  const CycleResult ana = TangentialSolver(*m.kernel, {tight}).solve_cycle(m.g0, contact, zones, cyclic_load(s, m));
+  const IncrementalResult inc = IncrementalSlipSolver(*m.kernel).solve(contact, cyclic_load(s, m));
+  REQUIRE(inc.cycles.size() == 1);
+  const CycleResult& r = inc.cycles[0];
+  REQUIRE(ana.regime == Regime::partial_slip);
+  CHECK(r.regime == Regime::partial_slip);
+  const double scale = kF * *std::max_element(contact.p.begin(), contact.p.end());
+  const double h = m.grid.h();
+  const double d_top = max_abs_diff(r.q_top, ana.q_top) / scale;
+  const double d_unloaded = max_abs_diff(r.q_unloaded, ana.q_unloaded) / scale;
+  const double d_range = max_abs_diff(r.slip_range, ana.slip_range) / ana.slip_max;
+  MESSAGE(fmt::format("{}: {} contact zones, {} stick zones; q top/unloaded {:.3g} {:.3g} f p_max, slip range {:.3g}, "
+                      "energy {:.10g} vs {:.10g} J/m",
+                      s.name, zones.size(), ana.stick_zones.size(), d_top, d_unloaded, d_range, r.dissipated_energy,
+                      ana.dissipated_energy));
+  CHECK(d_top < kAgreeTraction);
+  CHECK(d_unloaded < kAgreeTraction);
+  CHECK(d_range < kAgreeSlip);
+  CHECK(r.dissipated_energy == test::rel(ana.dissipated_energy, kAgreeSlip));
+  REQUIRE(r.stick_zones.size() == ana.stick_zones.size());
+  for (std::size_t k = 0; k < r.stick_zones.size(); ++k) {
+    CHECK(std::abs(r.stick_zones[k].first - ana.stick_zones[k].first) < kAgreeEdge * h);
+    CHECK(std::abs(r.stick_zones[k].second - ana.stick_zones[k].second) < kAgreeEdge * h);
+  }
+  return ana.stick_zones.size();
+}
+
+// A table of g0 sampled at the grid's cell centres of `m` (0.1 of a cell apart, linear between).
+ProfileSpec table_of(const Model& m, const std::vector<double>& g) {
+  ProfileSpec spec;
+  spec.type = ProfileType::table;
+  const int n = m.grid.n;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int k = 0; k < 10; ++k) {
+      const double t = k / 10.0;
+      spec.x.push_back((1.0 - t) * m.grid.x(i) + t * m.grid.x(i + 1));
+      spec.h.push_back((1.0 - t) * g[i] + t * g[i + 1]);
+    }
+  spec.x.push_back(m.grid.x(n - 1));
+  spec.h.push_back(g[n - 1]);
+  return spec;
+}
+
+}  // namespace
+
+TEST_CASE("incremental: agrees with the analogy on a tabulated, a worn-looking and a two-zone profile") {
+  // Tabulated: a cylinder with a waviness, sampled.
+  {
+    Scene s = hertz_cycle(1e5, 0.5, 1024);
+    s.name = "table";
+    ProfileSpec wavy;
+    wavy.type = ProfileType::sum;
+    ProfileSpec w;
+    w.type = ProfileType::wavy;
+    w.amplitude = 0.02e-6;
+    w.wavelength = 0.05e-3;
+    wavy.terms = {test::cylinder(), w};
+    s.profile = wavy;
+    const Model coarse = make_model(s, 4096);
+    s.profile = table_of(coarse, coarse.g0);
+    s.window = std::pair{coarse.grid.x_min + 2 * coarse.grid.h(), coarse.grid.x_max - 2 * coarse.grid.h()};
+    CHECK(compare_routes(s) >= 1);
+  }
+  // Worn-looking: the cylinder with the wear asymptote's scar, as paper 002's limit leaves it.
+  {
+    Scene s = test::hertz_wear(1e5, 0.5, 1, 1024);
+    const Model m = make_model(s);
+    const WearAsymptote a = wear_asymptote(s, m, solve_normal(s, m));
+    std::vector<double> g(m.grid.n);
+    for (int i = 0; i < m.grid.n; ++i) g[i] = m.g0[i] + 0.8 * a.w[i];  // 80 % of the way: slip zones still loaded
+    Scene worn = hertz_cycle(1e5, 0.5, 1024);
+    worn.name = "worn";
+    worn.profile = table_of(m, g);
+    worn.window = std::pair{m.grid.x_min + 2 * m.grid.h(), m.grid.x_max - 2 * m.grid.h()};
+    CHECK(compare_routes(worn) == 1);
+  }
+  // Two zones: two cylinders 0.4 mm apart, each with its stick zone.
+  {
+    Scene s = hertz_cycle(1e5, 0.5, 2048);
+    s.name = "two_zone";
+    s.profile = ProfileSpec{};
+    s.profile.type = ProfileType::envelope;
+    s.profile.terms = {test::cylinder(-0.2e-3), test::cylinder(0.2e-3)};
+    CHECK(compare_routes(s) == 2);
+  }
 }

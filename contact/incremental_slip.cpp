@@ -305,6 +305,27 @@ std::vector<double> stick_margin(std::span<const double> hi, std::span<const dou
   return m;
 }
 
+// What a marched cycle leaves besides its tractions: per cell the slip range (w_max − w_min over the cycle), the
+// largest of them and the energy ∫ energy_density dx; the stick zones at the top of the cycle (bounds hi_top) and
+// at the unloaded phase (bounds hi_unloaded).
+void close_cycle(const Grid& grid, std::span<const double> w_max, std::span<const double> w_min,
+                 std::span<const double> hi_top, std::span<const double> hi_unloaded, CycleResult& r) {
+  const int n = grid.n;
+  const std::vector<double> no_corners(n, 0.0);  // a stick zone never ends at a corner of the pad
+  r.slip_range.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    r.slip_range[i] = w_max[i] - w_min[i];
+    r.slip_max = std::max(r.slip_max, r.slip_range[i]);
+    r.dissipated_energy += grid.h() * r.energy_density[i];
+  }
+  const auto stick = locate_zones(grid, stick_margin(hi_top, r.q_top), no_corners);
+  for (const Zone& z : stick) r.stick_zones.emplace_back(z.left.x, z.right.x);
+  if (!stick.empty()) r.stick_zone = Interval{stick.front().left.x, stick.back().right.x};
+  const auto stick_unloaded = locate_zones(grid, stick_margin(hi_unloaded, r.q_unloaded), no_corners);
+  if (!stick_unloaded.empty())
+    r.stick_zone_unloaded = Interval{stick_unloaded.front().left.x, stick_unloaded.back().right.x};
+}
+
 }  // namespace
 
 IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, const CyclicLoad& load,
@@ -342,7 +363,6 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
     lo[i] = -hi[i];
     if (hi[i] > 0.0) capacity += h * hi[i];
   }
-  const std::vector<double> no_corners(n, 0.0);  // a stick zone never ends at a corner of the pad
   const int m = options_.increments_per_cycle;
   // The controlled quantity x (Q, or δ under displacement control) cycles 0 → +X → −X → +X; the bulk strain follows it.
   const double X = displacement ? load.delta : Q;
@@ -590,19 +610,7 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
     if (coupled) result.p_top = p;
     r.q_top = state.q;
     r.Q_peak = Q_peak;
-    r.slip_range.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
-      r.slip_range[i] = w_max[i] - w_min[i];
-      r.slip_max = std::max(r.slip_max, r.slip_range[i]);
-      r.dissipated_energy += h * r.energy_density[i];
-    }
-
-    const auto stick = locate_zones(grid, stick_margin(hi, r.q_top), no_corners);
-    for (const Zone& z : stick) r.stick_zones.emplace_back(z.left.x, z.right.x);
-    if (!stick.empty()) r.stick_zone = Interval{stick.front().left.x, stick.back().right.x};
-    const auto stick_unloaded = locate_zones(grid, stick_margin(hi_unloaded, r.q_unloaded), no_corners);
-    if (!stick_unloaded.empty())
-      r.stick_zone_unloaded = Interval{stick_unloaded.front().left.x, stick_unloaded.back().right.x};
+    close_cycle(grid, w_max, w_min, hi, hi_unloaded, r);
 
     // Reverse slip: at the top some cell is held at q = −f p (the leading edge has slipped backwards).
     int n_backward = 0;
@@ -763,7 +771,6 @@ IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& conta
     return from;
   };
   const int j_unloaded = crossing(j_top, true), j_reloaded = crossing(j_bottom, false);
-  const std::vector<double> no_corners(n, 0.0);
 
   for (int cycle = 1; cycle <= options_.cycles; ++cycle) {
     CycleResult r;
@@ -795,18 +802,7 @@ IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& conta
       if (j == j_unloaded) r.q_unloaded = state.q, hi_unloaded = hi;
       if (j == j_reloaded) r.q_reloaded = state.q;
     }
-    r.slip_range.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
-      r.slip_range[i] = w_max[i] - w_min[i];
-      r.slip_max = std::max(r.slip_max, r.slip_range[i]);
-      r.dissipated_energy += h * r.energy_density[i];
-    }
-    const auto stick = locate_zones(grid, stick_margin(hi_top, r.q_top), no_corners);
-    for (const Zone& z : stick) r.stick_zones.emplace_back(z.left.x, z.right.x);
-    if (!stick.empty()) r.stick_zone = Interval{stick.front().left.x, stick.back().right.x};
-    const auto stick_unloaded = locate_zones(grid, stick_margin(hi_unloaded, r.q_unloaded), no_corners);
-    if (!stick_unloaded.empty())
-      r.stick_zone_unloaded = Interval{stick_unloaded.front().left.x, stick_unloaded.back().right.x};
+    close_cycle(grid, w_max, w_min, hi_top, hi_unloaded, r);
     int n_backward = 0;
     for (int i = 0; i < n; ++i) n_backward += hi_top[i] > 0.0 && r.q_top[i] <= -hi_top[i];
     if (n_backward > 0) {

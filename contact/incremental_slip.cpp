@@ -305,6 +305,21 @@ std::vector<double> stick_margin(std::span<const double> hi, std::span<const dou
   return m;
 }
 
+// One increment's slip Δw added to the cycle's bookkeeping: the slip w per cell, its extremes, the slip travelled
+// and the energy density q Δw (q at the end of the increment).
+void accumulate_slip(const IncrementState& state, std::vector<double>& w, std::vector<double>& w_min,
+                     std::vector<double>& w_max, CycleResult& r) {
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const double dw = state.dw[i];
+    if (dw == 0.0) continue;
+    w[i] += dw;
+    w_min[i] = std::min(w_min[i], w[i]);
+    w_max[i] = std::max(w_max[i], w[i]);
+    r.slip_travelled[i] += std::abs(dw);
+    r.energy_density[i] += state.q[i] * dw;
+  }
+}
+
 // What a marched cycle leaves besides its tractions: per cell the slip range (w_max − w_min over the cycle), the
 // largest of them and the energy ∫ energy_density dx; the stick zones at the top of the cycle (bounds hi_top) and
 // at the unloaded phase (bounds hi_unloaded).
@@ -591,15 +606,7 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
         r.loop.push_back(loop_point());
         r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
       }
-      for (int i = 0; i < n; ++i) {
-        const double dw = state.dw[i];
-        if (dw == 0.0) continue;
-        w[i] += dw;
-        w_min[i] = std::min(w_min[i], w[i]);
-        w_max[i] = std::max(w_max[i], w[i]);
-        r.slip_travelled[i] += std::abs(dw);
-        r.energy_density[i] += state.q[i] * dw;
-      }
+      accumulate_slip(state, w, w_min, w_max, r);
       if (4 * j == m) r.q_unloaded = state.q, hi_unloaded = hi;
       if (2 * j == m) {
         r.q_bottom = state.q;
@@ -788,15 +795,7 @@ IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& conta
         r.loop.push_back({prev.P, prev.Q, delta_now()});
         r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
       }
-      for (int i = 0; i < n; ++i) {
-        const double dw = state.dw[i];
-        if (dw == 0.0) continue;
-        w[i] += dw;
-        w_min[i] = std::min(w_min[i], w[i]);
-        w_max[i] = std::max(w_max[i], w[i]);
-        r.slip_travelled[i] += std::abs(dw);
-        r.energy_density[i] += state.q[i] * dw;
-      }
+      accumulate_slip(state, w, w_min, w_max, r);
       if (j == j_top) r.q_top = state.q, hi_top = hi;
       if (j == j_bottom) r.q_bottom = state.q;
       if (j == j_unloaded) r.q_unloaded = state.q, hi_unloaded = hi;

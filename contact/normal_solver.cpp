@@ -16,6 +16,8 @@ std::string NormalSolverOptions::validate() const {
   if (!(tolerance > 0.0 && tolerance <= 1e-2))
     return fmt::format("tolerance = {} is outside (0, 1e-2]", tolerance);
   if (max_iterations < 1) return fmt::format("max_iterations = {} must be at least 1", max_iterations);
+  if (!(proportioning >= 0.0 && proportioning < 1e3))
+    return fmt::format("proportioning = {} is outside [0, 1e3)", proportioning);
   return {};
 }
 
@@ -153,7 +155,7 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
   auto& g = state.gap;
   g.assign(n, 0.0);
   std::vector<double> u(n), t(n, 0.0), v(n), z(preconditioned ? n : 0), e(preconditioned ? n : 0);
-  std::vector<char> work(n);
+  std::vector<char> work(n), e_work;
   std::vector<int> changed;  // cells where projection or re-entry changed p − τ t
   std::vector<double> change;
   apply(p, u);
@@ -165,7 +167,7 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
   for (int it = 0;; ++it) {
     summary.iterations = it;
     double g_mean = 0.0;
-    double G = 0.0;
+    double G = 0.0, overlap_sq = 0.0;
     for (bool evaluated = false; !evaluated;) {
       double g_sum = 0.0;
       int n_active = 0;
@@ -176,6 +178,7 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
       g_mean = g_sum / n_active;
       double g_max = 0.0, comp = 0.0, overlap = 0.0;
       G = 0.0;
+      overlap_sq = 0.0;
       for (int i = 0; i < n; ++i) {
         if (!admissible[i]) continue;
         g[i] -= g_mean;
@@ -185,6 +188,7 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
           G += g[i] * g[i];
         } else {
           overlap = std::max(overlap, -g[i]);
+          if (g[i] < 0.0) overlap_sq += g[i] * g[i];
         }
       }
       // A complete contact loads every admissible cell and leaves no open gap to measure against; A P, the 2D
@@ -208,10 +212,15 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
     // The working set: the contact set; with the preconditioner also every overlapping cell, which then enters
     // through a preconditioned steepest-descent step on the enlarged set (re-entry at −τ g, as without it, scales
     // with the cell and overshoots on fine grids).
+    // Overlapping cells are let in only when their violation is large against the gradient on the contact set
+    // (Dostál's proportioning): cells at zero gap and zero pressure, which a worn profile has by the hundred, would
+    // otherwise enter and leave at every iteration and restart CG each time.
+    const double gamma = options_.proportioning;
+    const bool admit = overlap_sq > gamma * gamma * G;
     bool enlarge = false;
     for (int i = 0; i < n; ++i) {
       const bool overlapping = p[i] == 0.0 && g[i] < 0.0;  // inadmissible cells have g = +∞
-      enlarge = enlarge || (preconditioned && overlapping);
+      enlarge = enlarge || (preconditioned && overlapping && admit);
     }
     for (int i = 0; i < n; ++i) work[i] = p[i] > 0.0 || (enlarge && g[i] < 0.0);
 
@@ -227,12 +236,15 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
       // symbol preconditioner is nearly uniform there). Shifted, the Jacobi block scales cells by up to 1e6
       // against the symbol block, and only the projection in the preconditioner's metric keeps CG consistent:
       // z = M⁻¹ g − λ M⁻¹ 1 with λ = Σ M⁻¹g / Σ M⁻¹1 (a plain mean stalled every wear-sized shift).
-      std::fill(e.begin(), e.end(), 0.0);
       if (shifted) {
-        for (int i = 0; i < n; ++i) e[i] = work[i] && !(shift[i] > k00) ? 1.0 : 0.0;
-        kernel_.fft().apply_spectrum(inverse, e, e);
-        for (int i = 0; i < n; ++i)
-          if (work[i] && shift[i] > k00) e[i] = 1.0 / (k00 + shift[i]);
+        // M⁻¹ 1 depends on the working set alone: recomputed only when the set changed.
+        if (work != e_work) {
+          for (int i = 0; i < n; ++i) e[i] = work[i] && !(shift[i] > k00) ? 1.0 : 0.0;
+          kernel_.fft().apply_spectrum(inverse, e, e);
+          for (int i = 0; i < n; ++i)
+            if (work[i] && shift[i] > k00) e[i] = 1.0 / (k00 + shift[i]);
+          e_work = work;
+        }
       } else {
         for (int i = 0; i < n; ++i) e[i] = work[i] ? 1.0 : 0.0;
       }
@@ -277,7 +289,7 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
         const double stepped = p[i] - tau * t[i];
         if (stepped < 0.0) changed.push_back(i), change.push_back(-stepped);
         p[i] = std::max(stepped, 0.0);
-      } else if (g[i] < 0.0) {
+      } else if (g[i] < 0.0 && admit) {
         p[i] = -tau * g[i];
         changed.push_back(i), change.push_back(p[i]);
         reentered = true;
@@ -288,9 +300,12 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
     if (!(load > 0.0)) return finish(Termination::non_finite);
     const double scale = P / load;
     for (double& pi : p) pi *= scale;
-    if (options_.incremental_gap && !shifted && int(changed.size()) <= max_columns && tau != 0.0) {
-      // u ← scale (u − τ (v − K c / τ))
-      for (std::size_t k = 0; k < changed.size(); ++k) add_column(column, changed[k], -change[k] / tau, v);
+    if (options_.incremental_gap && int(changed.size()) <= max_columns && tau != 0.0) {
+      // u ← scale (u − τ (v − (K + diag(shift)) c / τ))
+      for (std::size_t k = 0; k < changed.size(); ++k) {
+        add_column(column, changed[k], -change[k] / tau, v);
+        if (shifted) v[changed[k]] -= shift[changed[k]] * change[k] / tau;
+      }
       for (int i = 0; i < n; ++i) u[i] = scale * (u[i] - tau * v[i]);
       u_exact = false;
     } else {

@@ -50,10 +50,20 @@ struct NormalSolverOptions {
   bool incremental_gap = true;
   // Cold start on the cells with g0 ≤ min g0 + A P / 2 instead of on every admissible cell.
   bool cold_start_near = true;
+  // Γ of the proportioning test (Dostál and Schöberl 2005, MPRGP): overlapping cells (p = 0, g < 0) enter the
+  // contact set only when Σ g² over them exceeds Γ² Σ g² over the contact set; until then CG goes on, conjugate,
+  // on the set it has. 0 (the default) lets them in at every iteration, Polonsky and Keer's re-entry. In [0, 1e3).
+  // A worn profile near its limit has hundreds of cells at zero gap and zero pressure that would otherwise enter
+  // and leave at every iteration: the wear stage uses kWearProportioning there (docs/PERFORMANCE.md,
+  // "Proportioning", for what it buys and why plain solves keep 0).
+  double proportioning = 0.0;
 
   // Empty when valid; otherwise names the field, its value and the constraint.
   std::string validate() const;
 };
+
+// Γ for solves on worn profiles: measured best of 0.1, 0.3, 1 and 3 on the 4096-cell Hertz wear run.
+inline constexpr double kWearProportioning = 0.3;
 
 std::string to_string(NormalSolverOptions::Preconditioner p);
 
@@ -86,8 +96,9 @@ class NormalSolver {
   SolveSummary solve(std::span<const double> g0, double P, ContactState& state) const;
   // The same with the operator K + diag(shift), shift ≥ 0 per cell (m/Pa): the contact-implicit wear step of
   // ARCHITECTURE.md, where shift = ΔN · (wear coefficient) · (slip per cycle) and the returned gap includes the
-  // step's wear. K + diag(shift) is symmetric positive definite on the load-balanced subspace, like K; the
-  // solve is unpreconditioned (the symbol fits K alone) and recomputes the displacement every iteration.
+  // step's wear. K + diag(shift) is symmetric positive definite on the load-balanced subspace, like K. The
+  // preconditioner is then a block one: the symbol where K dominates, Jacobi 1/(K_00 + shift_i) where the shift
+  // does; the displacement (K + diag(shift)) p is carried as above.
   SolveSummary solve(std::span<const double> g0, double P, ContactState& state, std::span<const double> shift) const;
 
   const NormalSolverOptions& options() const { return options_; }

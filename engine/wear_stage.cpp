@@ -44,7 +44,7 @@ bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model,
 }
 
 AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model)
-    : scene_(scene), model_(model), solver_(*model.kernel), implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
+    : scene_(scene), model_(model), solver_(*model.kernel, worn_options()), implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
   const double f = *scene.friction;
   const double bulk_strain =
       scene.bulk_stress * (model.pair.kappa_specimen() + 1.0) / (8.0 * model.pair.mu_specimen());
@@ -72,6 +72,7 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
       throw ConvergenceError(fmt::format("wear: the {} solve on the worn profile stopped ({}) with residual {:.3g}",
                                          what, to_string(s.termination), s.residual));
   };
+  if (int(out.p.size()) == n) normal_.p = out.p;
   check(solver_.solve(gap_, scene_.P, normal_), "normal");
   for (int i = 0; i < n; ++i) gap_[i] -= tilt_ * grid.x(i);
   check(solver_.solve(gap_, corrective_load_, corrective_), "corrective");
@@ -124,7 +125,7 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
                                                        double reference_depth)
     : scene_(scene),
       model_(model),
-      solver_(*model.kernel),
+      solver_(*model.kernel, worn_options()),
       implicit_solver_(*model.kernel, implicit_options(model.grid.n)),
       slip_(*model.kernel, incremental_options(scene)),
       datum_(model.grid, model.pair, reference_x, reference_depth),
@@ -147,6 +148,7 @@ void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleR
   const int n = grid.n;
   gap_.resize(n);
   for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
+  if (int(out.p.size()) == n) normal_.p = out.p;
   const SolveSummary s = solver_.solve(gap_, scene_.P, normal_);
   ++cycle_solves;
   cycle_iterations += s.iterations;

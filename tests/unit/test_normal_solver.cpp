@@ -197,3 +197,18 @@ TEST_CASE("a warm start from a nearby load or a worn profile takes fewer iterati
     CHECK(worn_warm_summary.iterations < worn_cold_summary.iterations);
   }
 }
+
+TEST_CASE("invalid options name the field, its value and the constraint") {
+  NormalSolverOptions o;
+  CHECK(o.validate().empty());
+  o.proportioning = kWearProportioning;
+  CHECK(o.validate().empty());
+  o.proportioning = -0.5;
+  CHECK(o.validate().find("proportioning = -0.5") != std::string::npos);
+  o = {};
+  o.tolerance = 0.1;
+  CHECK(o.validate().find("tolerance = 0.1") != std::string::npos);
+  o = {};
+  o.max_iterations = 0;
+  CHECK(o.validate().find("max_iterations = 0") != std::string::npos);
+}

@@ -20,7 +20,8 @@ class ContactResponse {
   virtual ~ContactResponse() = default;
   virtual int cells() const = 0;
   virtual double cell_width() const = 0;  // m
-  // The steady cycle on the profile worn by w.
+  // The steady cycle on the profile worn by w. out.p, when it holds one value per cell, is the normal solve's warm
+  // start (the stepper knows a pressure close to w's: the contact-implicit solution that produced w).
   virtual void respond(std::span<const double> w, CycleResponse& out) = 0;
   // The pressure p that satisfies the contact conditions with gap g0 + w + d p − δ (operator K + diag(d)), i.e. the
   // end-of-step pressure of a contact-implicit step with d = ΔN c s. p holds a warm start on entry. Returns false

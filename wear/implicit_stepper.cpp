@@ -21,6 +21,9 @@ bool ImplicitWearStepper::euler(ContactResponse& contact, const state_type& w, c
 controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& contact, state_type& w, time_type& N,
                                                           time_type& dN) {
   if (!response_valid_ || state_at_ != w) {
+    // The last step's end-of-step pressure is the contact pressure of a profile within one extrapolation of w: the
+    // normal solve's warm start.
+    response_.p = p_full_;
     contact.respond(w, response_);
     ++stats_.responses;
     state_at_ = w;
@@ -32,7 +35,7 @@ controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& conta
   std::vector<double> p_two;
   const bool solved = euler(contact, w, response_.s, dN, p_full_, w_full_) &&
                       euler(contact, w, response_.s, 0.5 * dN, p_half_, w_half_) &&
-                      (contact.respond(w_half_, half_), ++stats_.responses, p_two = p_half_,
+                      (half_.p = p_half_, contact.respond(w_half_, half_), ++stats_.responses, p_two = p_half_,
                        euler(contact, w_half_, half_.s, 0.5 * dN, p_two, w_two_));
   if (!solved) {
     ++stats_.rejected;

@@ -74,12 +74,6 @@ std::string ruiz_csv(const RuizProfile& r) {
   return s;
 }
 
-std::string svg_and_png(const std::string& stem, const std::string& plot, int width, int height) {
-  return fmt::format("set terminal svg size {0},{1} dynamic font 'sans,12'\nset output '{2}.svg'\n{3}"
-                     "set terminal pngcairo size {0},{1} font 'sans,11'\nset output '{2}.png'\nreplot\nunset output\n",
-                     width, height, stem, plot);
-}
-
 // fatigue.gp: the SWT map with contour lines, the critical plane at its maximum, the contact's ends; Ruiz's F1 and
 // F2 along x with the stick zone shaded.
 std::string fatigue_plot_script(const Scene& scene, const RunResult& r, const FatigueStage& f) {
@@ -117,7 +111,7 @@ unset key
                    m.max.swt * 1e-6, px, m.max_y * 1e6, degrees(theta));
   s += fmt::format("set title \"{}: Smith–Watson–Topper on the critical plane over the cycle\" noenhanced\n",
                    scene.name);
-  s += svg_and_png("swt_map",
+  s += png_only("swt_map",
                    "splot 'swt_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d notitle, "
                    "'' using ($1*1e3):($2*1e3):($3*1e-6) nosurface with lines lc rgb '#333333' notitle\n",
                    1000, 460);
@@ -208,7 +202,7 @@ void write_fatigue(const Scene& scene, const RunResult& result, const FatigueSta
   out.write("swt_map.dat", swt_map_dat(f.swt));
   out.write("fatigue.gp", fatigue_plot_script(scene, result, f));
   if (!run_gnuplot(out.path(""), "fatigue.gp")) return;
-  plots.insert(plots.end(), {"swt_map.svg", "swt_map.png"});
+  plots.insert(plots.end(), {"swt_map.png"});
   if (f.ruiz) plots.insert(plots.end(), {"ruiz.svg", "ruiz.png"});
 }
 

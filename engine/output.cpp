@@ -146,8 +146,8 @@ set xrange [{}:{}]
                         c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
   const double f = st.f;
   std::string s = head + marks;
-  s += fmt::format("set title \"{}: shear traction at the four phases (Q/fP = {:.3g}, f = {:.3g}; grey: stick zone)\" "
-                   "noenhanced\n", scene.name, st.Q_max / (f * scene.P), f);
+  s += fmt::format("set title \"{}: shear traction at the four phases (Q/fP = {:.3g}, f = {:.3g}; {})\" noenhanced\n",
+                   scene.name, st.Q_max / (f * scene.P), f, c.stick_zone ? "grey: stick zone" : "gross slip: no stick zone");
   s += "set ylabel 'shear traction q (MPa)'\n";
   s += fmt::format(
       "plot 'cycle.csv' skip 1 using ($1*1e3):({0}*$2*1e-6) with lines dt 3 lc rgb '#888888' title '±f p', "
@@ -253,12 +253,6 @@ std::string cycles_label(double c) {
   const double m = c / std::pow(10.0, e);
   if (std::abs(m - std::round(m)) < 5e-3) return fmt::format("N = {:.0f}×10^{{{}}}", std::round(m), e);
   return fmt::format("N = {:.3g}×10^{{{}}}", m, e);
-}
-
-std::string svg_and_png(const std::string& stem, const std::string& plot, int width = 1000, int height = 560) {
-  return fmt::format("set terminal svg size {0},{1} dynamic font 'sans,12'\nset output '{2}.svg'\n{3}"
-                     "set terminal pngcairo size {0},{1} font 'sans,11'\nset output '{2}.png'\nreplot\nunset output\n",
-                     width, height, stem, plot);
 }
 
 // The fretting loop: Q against δ at the end of every increment, the first loading and then the steady cycle, top to
@@ -396,9 +390,9 @@ set size ratio -1
 unset key
 )", m.y.back() * 1e3, m.x.front() * 1e3, m.x.back() * 1e3);
   s += fmt::format("set title \"{}: von Mises stress at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
-  s += svg_and_png("stress_von_mises", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($6*1e-6) with pm3d\n");
+  s += png_only("stress_von_mises", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($6*1e-6) with pm3d\n");
   s += fmt::format("set title \"{}: σxx at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
-  s += svg_and_png("stress_sxx", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d\n");
+  s += png_only("stress_sxx", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d\n");
   return s;
 }
 
@@ -543,8 +537,13 @@ table{{border-collapse:collapse}}td{{border-bottom:1px solid #ddd;padding:2px 10
                               scene.name, summary.value("version", ""));
   for (const auto& t : tables) s += fmt::format(",\n<a href=\"{0}\">{0}</a>", t);
   s += ".</p>\n";
-  for (const auto& plot : plots)
-    if (plot.ends_with(".svg")) s += fmt::format("<p><img src=\"{0}\" alt=\"{0}\" width=\"900\"></p>\n", plot);
+  // Each plot once: its SVG, or its PNG where there is no SVG (the colour maps).
+  auto has = [&plots](const std::string& name) { return std::find(plots.begin(), plots.end(), name) != plots.end(); };
+  for (const auto& plot : plots) {
+    const bool svg = plot.ends_with(".svg");
+    const bool png_alone = plot.ends_with(".png") && !has(plot.substr(0, plot.size() - 4) + ".svg");
+    if (svg || png_alone) s += fmt::format("<p><img src=\"{0}\" alt=\"{0}\" width=\"900\"></p>\n", plot);
+  }
   s += "<h2>Summary</h2><table>\n";
   for (const auto& [k, v] : rows) s += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", k, v);
   s += "</table></body></html>\n";
@@ -552,6 +551,17 @@ table{{border-collapse:collapse}}td{{border-bottom:1px solid #ddd;padding:2px 10
 }
 
 }  // namespace
+
+std::string svg_and_png(const std::string& stem, const std::string& plot, int width, int height) {
+  return fmt::format("set terminal svg size {0},{1} dynamic font 'sans,12'\nset output '{2}.svg'\n{3}"
+                     "set terminal pngcairo size {0},{1} font 'sans,11'\nset output '{2}.png'\nreplot\nunset output\n",
+                     width, height, stem, plot);
+}
+
+std::string png_only(const std::string& stem, const std::string& plot, int width, int height) {
+  return fmt::format("set terminal pngcairo size {0},{1} font 'sans,11'\nset output '{2}.png'\n{3}unset output\n",
+                     width, height, stem, plot);
+}
 
 json write_results(const Scene& scene, const RunResult& result, OutputFolder& out) {
   json summary = make_summary(scene, result);
@@ -615,7 +625,7 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
       out.write("stress_map.dat", stress_map_dat(result.stress_maps.front(), scene.specimen.nu));
       out.write("stress.gp", stress_plot_script(scene, result.stress_maps.front()));
       if (run_gnuplot(out.path(""), "stress.gp"))
-        plots.insert(plots.end(), {"stress_von_mises.svg", "stress_von_mises.png", "stress_sxx.svg", "stress_sxx.png"});
+        plots.insert(plots.end(), {"stress_von_mises.png", "stress_sxx.png"});
     }
     if (result.fatigue) write_fatigue(scene, result, *result.fatigue, out, tables, plots);
   }

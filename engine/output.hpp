@@ -35,6 +35,11 @@ class OutputFolder {
 // summary.json, scene.resolved.json, contact.csv, the plots and index.html. Returns the summary written.
 nlohmann::json write_results(const Scene& scene, const RunResult& result, OutputFolder& out);
 
+// gnuplot commands that draw `plot` (a plot or splot command with its newline) into <stem>.svg and <stem>.png.
+std::string svg_and_png(const std::string& stem, const std::string& plot, int width = 1000, int height = 560);
+// The same into <stem>.png alone: for colour maps, whose SVG holds a polygon per grid point (8 MB for 161 × 81).
+std::string png_only(const std::string& stem, const std::string& plot, int width = 1000, int height = 560);
+
 // Runs gnuplot on `script` inside `dir`; false (and a note on stderr) when gnuplot is missing or fails.
 bool run_gnuplot(const std::filesystem::path& dir, const std::string& script_file);
 

@@ -376,7 +376,8 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
   }
 
-  if (top.find("friction"))
+  const bool friction_given = top.find("friction") != nullptr;  // an invalid value is reported once, not as missing
+  if (friction_given)
     s.friction = top.number("friction", std::nullopt,
                             {[](double v) { return v > 0.0 && v <= 10.0; }, "a friction coefficient in (0, 10]"});
 
@@ -653,7 +654,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   // What the effects need.
   if (s.tangential) {
     const char* who = s.tangential_implied ? "effects.wear (through the load cycle it needs)" : "effects.tangential";
-    if (!s.friction)
+    if (!friction_given)
       problems.push_back(fmt::format("friction: missing; {} needs a friction coefficient in (0, 10]", who));
     if (!s.history.empty()) {
       if (s.Q_amplitude || s.Q_ratio)

@@ -198,6 +198,7 @@ TEST_CASE("the tangential effect: friction, and Q as exactly one of amplitude or
   j["friction"] = 0.0;
   j["load"]["Q"] = {{"ratio", 0.5}, {"amplitude", 1e4}};
   CHECK(reports(j, "friction", {"(0, 10]"}));
+  CHECK_FALSE(reports(j, "friction", {"missing"}));  // one problem for one cause: given, but not allowed
   CHECK(reports(j, "load.Q", {"exactly one"}));
   j["friction"] = 0.5;
   j["load"]["Q"] = {{"ratio", -0.5}};

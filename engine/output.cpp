@@ -97,7 +97,7 @@ std::string contact_csv(const NormalResult& n) {
   return s;
 }
 
-std::string pressure_plot_script(const Scene& scene, const NormalResult& n) {
+std::string pressure_plot_script(const Scene& scene, const NormalResult& n, const CycleStage* cycle) {
   std::string s = R"(# Pressure under the normal load. Re-run with: gnuplot pressure.gp
 set datafile separator ','
 set datafile missing 'inf'
@@ -116,18 +116,27 @@ set key top right
   if (n.reference)
     plot += fmt::format(", '' skip 1 using ($1*1e3):($5*1e-6) with lines dt 2 lw 1.5 lc rgb '#d62728' "
                         "title 'closed form ({})'", n.reference->kind);
+  if (cycle && !cycle->p_top.empty())  // β ≠ 0: the pressure the shear leaves at the top and the bottom of the cycle
+    plot += ", 'cycle.csv' skip 1 using ($1*1e3):($10*1e-6) with steps lw 1.2 lc rgb '#d62728' title 'top of the "
+            "cycle (coupled)', '' skip 1 using ($1*1e3):($11*1e-6) with steps lw 1.2 dt 2 lc rgb '#2ca02c' "
+            "title 'bottom of the cycle (coupled)'";
   s += "set terminal svg size 900,560 dynamic font 'sans,12'\nset output 'pressure.svg'\n" + plot + "\n";
   s += "set terminal pngcairo size 900,560 font 'sans,11'\nset output 'pressure.png'\nreplot\nunset output\n";
   return s;
 }
 
-std::string cycle_csv(const NormalResult& n, const CycleResult& c) {
+std::string cycle_csv(const NormalResult& n, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  const bool coupled = !st.p_top.empty();
   std::string s = "x_m,p_Pa,q_top_Pa,q_unloaded_Pa,q_bottom_Pa,q_reloaded_Pa,slip_range_m,slip_per_cycle_m,"
-                  "energy_density_J_m2\n";
-  for (int i = 0; i < n.grid.n; ++i)
-    s += fmt::format("{},{},{},{},{},{},{},{},{}\n", num(n.grid.x(i)), num(n.state.p[i]), num(c.q_top[i]),
+                  "energy_density_J_m2";
+  s += coupled ? ",p_top_Pa,p_bottom_Pa\n" : "\n";
+  for (int i = 0; i < n.grid.n; ++i) {
+    s += fmt::format("{},{},{},{},{},{},{},{},{}", num(n.grid.x(i)), num(n.state.p[i]), num(c.q_top[i]),
                      num(c.q_unloaded[i]), num(c.q_bottom[i]), num(c.q_reloaded[i]), num(c.slip_range[i]),
                      num(c.slip_travelled[i]), num(c.energy_density[i]));
+    s += coupled ? fmt::format(",{},{}\n", num(st.p_top[i]), num(st.p_bottom[i])) : "\n";
+  }
   return s;
 }
 
@@ -149,14 +158,25 @@ set xrange [{}:{}]
   s += fmt::format("set title \"{}: shear traction at the four phases (Q/fP = {:.3g}, f = {:.3g}; {})\" noenhanced\n",
                    scene.name, st.Q_max / (f * scene.P), f, c.stick_zone ? "grey: stick zone" : "gross slip: no stick zone");
   s += "set ylabel 'shear traction q (MPa)'\n";
+  // The Coulomb bounds ±f p: with β ≠ 0 the pressure differs between the top and the bottom of the cycle.
+  const std::string bounds =
+      st.p_top.empty()
+          ? fmt::format("'cycle.csv' skip 1 using ($1*1e3):({0}*$2*1e-6) with lines dt 3 lc rgb '#888888' title '±f p', "
+                        "'' skip 1 using ($1*1e3):(-{0}*$2*1e-6) with lines dt 3 lc rgb '#888888' notitle, ",
+                        f)
+          : fmt::format("'cycle.csv' skip 1 using ($1*1e3):({0}*$10*1e-6) with lines dt 3 lc rgb '#888888' "
+                        "title '±f p, top', '' skip 1 using ($1*1e3):(-{0}*$10*1e-6) with lines dt 3 lc rgb '#888888' "
+                        "notitle, '' skip 1 using ($1*1e3):({0}*$11*1e-6) with lines dt 4 lc rgb '#555555' "
+                        "title '±f p, bottom', '' skip 1 using ($1*1e3):(-{0}*$11*1e-6) with lines dt 4 "
+                        "lc rgb '#555555' notitle, ",
+                        f);
+  s += "plot " + bounds;
   s += fmt::format(
-      "plot 'cycle.csv' skip 1 using ($1*1e3):({0}*$2*1e-6) with lines dt 3 lc rgb '#888888' title '±f p', "
-      "'' skip 1 using ($1*1e3):(-{0}*$2*1e-6) with lines dt 3 lc rgb '#888888' notitle, "
-      "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+{1})', "
-      "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded ({1} = 0)', "
-      "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-{1})', "
-      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({1} = 0)'\n",
-      f, scene.control == LoadControl::displacement ? "δ" : "Q");  // the phases of the controlled quantity
+      "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+{0})', "
+      "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded ({0} = 0)', "
+      "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-{0})', "
+      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({0} = 0)'\n",
+      scene.control == LoadControl::displacement ? "δ" : "Q");  // the phases of the controlled quantity
   const std::string traction_plot = s.substr(s.find("plot 'cycle.csv'"));
   std::string out = s.substr(0, s.find("plot 'cycle.csv'"));
   out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'traction.svg'\n" + traction_plot;
@@ -573,7 +593,7 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
   std::vector<std::string> tables{"contact.csv"};
   const bool slips = result.cycle && !result.cycle->result.slip_range.empty();  // gross slip under force control: none
   if (slips) {
-    out.write("cycle.csv", cycle_csv(result.normal, result.cycle->result));
+    out.write("cycle.csv", cycle_csv(result.normal, *result.cycle));
     tables.push_back("cycle.csv");
     if (!result.cycle->result.loop.empty()) {
       out.write("loop.csv", loop_csv(result.cycle->result));
@@ -582,7 +602,7 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
   }
   std::vector<std::string> plots;
   if (scene.plots) {
-    out.write("pressure.gp", pressure_plot_script(scene, result.normal));
+    out.write("pressure.gp", pressure_plot_script(scene, result.normal, result.cycle ? &*result.cycle : nullptr));
     if (run_gnuplot(out.path(""), "pressure.gp")) plots.insert(plots.end(), {"pressure.svg", "pressure.png"});
     if (slips) {
       out.write("cycle.gp", cycle_plot_script(scene, result.normal, *result.cycle));

@@ -228,6 +228,7 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
     stage.route += fmt::format(" [beta = {:.4g}: {} coupling sweeps over {} increments, at most {}]", pair.beta(),
                                r.n_coupling_sweeps, r.n_increments, r.max_coupling_sweeps);
   stage.result = r.cycles.back();
+  if (dissimilar) stage.p_top = r.p_top, stage.p_bottom = r.p_bottom;
   if ((displacement || history) && !stage.result.slip_range.empty())
     stage.Q_max = stage.result.Q_peak;  // the peak Q reached
   return stage;
@@ -359,6 +360,10 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
              {"reference_x", st.reference_x},
              {"corrective_solves", c.solves.size()}};
     if (!c.message.empty()) cycle["message"] = c.message;
+    if (!st.p_top.empty()) {  // β ≠ 0: the shear moves the pressure
+      cycle["p_max_top"] = *std::max_element(st.p_top.begin(), st.p_top.end());
+      cycle["p_max_bottom"] = *std::max_element(st.p_bottom.begin(), st.p_bottom.end());
+    }
     if (scene.control == LoadControl::displacement) {
       cycle["delta"] = *scene.delta;
       cycle["sliding_amplitude"] = c.sliding_amplitude;  // 0 short of gross slip

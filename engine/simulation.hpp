@@ -66,6 +66,9 @@ struct CycleStage {
   // The displacement datum (contact/reference_datum.hpp): reference points at depth reference_depth (m) below
   // reference_x (m), the centre of the contact under P alone.
   double reference_x = 0.0, reference_depth = 0.0;
+  // Dissimilar bodies (β ≠ 0): the pressure at the top and the bottom of the steady cycle (Pa per cell), which the
+  // shear changes; empty for similar bodies, whose pressure is the normal contact's at every instant.
+  std::vector<double> p_top, p_bottom;
 };
 
 struct RunResult {

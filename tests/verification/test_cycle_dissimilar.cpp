@@ -16,8 +16,13 @@
 // 2e-8 p0 in traction (160 increments). The engine therefore reports the second cycle when β ≠ 0, and the
 // convergence studies below measure it.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -28,6 +33,7 @@
 #include "contact/closed_form.hpp"
 #include "contact/coupling_kernel.hpp"
 #include "contact/incremental_slip.hpp"
+#include "engine/output.hpp"
 #include "engine/simulation.hpp"
 
 using namespace fretwear;
@@ -321,4 +327,47 @@ TEST_CASE("dissimilar: a scene picks the incremental route and reports the sweep
   CHECK(st.result.stick_zone);
   s.tangential->route = TangentialRoute::analogy;
   CHECK_THROWS_AS(solve_cycle(s, m, n), UnsupportedError);
+}
+
+TEST_CASE("dissimilar: the coupled pressure at the top and the bottom reaches the outputs; similar bodies have none") {
+  Scene s = dissimilar_cycle(kTitanium, 512);
+  s.name = "dissimilar_outputs";
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  const CycleStage st = solve_cycle(s, m, n);
+  REQUIRE(st.p_top.size() == std::size_t(m.grid.n));
+  REQUIRE(st.p_bottom.size() == std::size_t(m.grid.n));
+  // Each carries P, and the shear has moved it off the frictionless pressure (β = −0.05: by a little).
+  double top = 0.0, bottom = 0.0;
+  for (int i = 0; i < m.grid.n; ++i) top += m.grid.h() * st.p_top[i], bottom += m.grid.h() * st.p_bottom[i];
+  CHECK(top == test::rel(s.P, 1e-10));
+  CHECK(bottom == test::rel(s.P, 1e-10));
+  CHECK(max_abs_diff(st.p_top, n.state.p) > 1e-6 * max_of(n.state.p));
+
+  RunResult r;
+  r.normal = n;
+  r.cycle = st;
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / fmt::format("fretwear-dissimilar-{}", ::getpid());
+  {
+    Scene quiet = s;
+    quiet.plots = false;
+    OutputFolder out(dir);
+    const nlohmann::json summary = write_results(quiet, r, out);
+    out.commit();
+    CHECK(summary["cycle"]["p_max_top"].get<double>() == test::rel(max_of(st.p_top), 1e-15));
+    CHECK(summary["cycle"]["p_max_bottom"].get<double>() == test::rel(max_of(st.p_bottom), 1e-15));
+  }
+  std::ifstream csv(dir / "cycle.csv");
+  std::string header;
+  std::getline(csv, header);
+  CHECK(header.ends_with(",p_top_Pa,p_bottom_Pa"));
+  std::filesystem::remove_all(dir);
+
+  // Similar bodies: the pressure is the contact's at every instant, and no such columns or keys are written.
+  const Scene similar = test::hertz_cycle(kP, kRatio, 512);
+  const Model ms = make_model(similar);
+  const CycleStage sst = solve_cycle(similar, ms, solve_normal(similar, ms));
+  CHECK(sst.p_top.empty());
+  CHECK(sst.p_bottom.empty());
 }

@@ -486,6 +486,8 @@ set grid
       lo = std::min(lo, rec.contact.first), hi = std::max(hi, rec.contact.second);
       if (rec.stick_zone) lo = std::min(lo, rec.stick_zone->first), hi = std::max(hi, rec.stick_zone->second);
     }
+    if (w.asymptote.unavailable.empty())
+      lo = std::min(lo, w.asymptote.extent.first), hi = std::max(hi, w.asymptote.extent.second);
     const double pad = 0.08 * (hi - lo);
     s += fmt::format("set yrange [{}:{}]\n", (lo - pad) * 1e3, (hi + pad) * 1e3);
     s += fmt::format("set title \"{}: stick zone and contact extent against cycles\" noenhanced\n", scene.name);
@@ -500,9 +502,15 @@ set grid
         "'' skip 1 using ($1 > 0 ? $1 : NaN):($7*1e3) with linespoints pt 6 ps 0.7 lw 1 lc rgb '#6baed6' "
         "title 'contact, left end', "
         "'' skip 1 using ($1 > 0 ? $1 : NaN):($8*1e3) with linespoints pt 4 ps 0.7 lw 1 lc rgb '#fc9272' "
-        "title 'contact, right end'\n",
+        "title 'contact, right end'",
         num(s0->first * 1e3), num(s0->second * 1e3));
-    s += svg_and_png("wear_stick_zone", stick);
+    // The worn extent of the asymptote, where the contact tends (its worn zones touch at zero pressure there, so
+    // near the limit the contact's ends move by a few cells from record to record).
+    if (w.asymptote.unavailable.empty())
+      stick += fmt::format(", {0} with lines dt 2 lw 1 lc rgb '#555555' title 'worn extent of the asymptote', {1} with "
+                           "lines dt 2 lw 1 lc rgb '#555555' notitle",
+                           num(w.asymptote.extent.first * 1e3), num(w.asymptote.extent.second * 1e3));
+    s += svg_and_png("wear_stick_zone", stick + "\n");
   }
   const double area_top = 1.12 * std::max(a.worn_area, [&] {
     double v = 0.0;

@@ -54,8 +54,8 @@ struct NormalSolverOptions {
   // contact set only when Σ g² over them exceeds Γ² Σ g² over the contact set; until then CG goes on, conjugate,
   // on the set it has. 0 (the default) lets them in at every iteration, Polonsky and Keer's re-entry. In [0, 1e3).
   // A worn profile near its limit has hundreds of cells at zero gap and zero pressure that would otherwise enter
-  // and leave at every iteration: the wear stage uses kWearProportioning there (docs/PERFORMANCE.md,
-  // "Proportioning", for what it buys and why plain solves keep 0).
+  // and leave at every iteration: the wear stage uses kWearProportioning there (docs/PERFORMANCE.md, "Where the
+  // 4096-cell time went", for what it buys and why plain solves keep 0).
   double proportioning = 0.0;
 
   // Empty when valid; otherwise names the field, its value and the constraint.

@@ -112,9 +112,9 @@ unset key
   s += fmt::format("set title \"{}: Smith–Watson–Topper on the critical plane over the cycle\" noenhanced\n",
                    scene.name);
   s += png_only("swt_map",
-                   "splot 'swt_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d notitle, "
-                   "'' using ($1*1e3):($2*1e3):($3*1e-6) nosurface with lines lc rgb '#333333' notitle\n",
-                   1000, 460);
+                "splot 'swt_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d notitle, "
+                "'' using ($1*1e3):($2*1e3):($3*1e-6) nosurface with lines lc rgb '#333333' notitle\n",
+                1000, 460);
   if (!f.ruiz) return s;
   s += R"(
 reset

@@ -17,7 +17,9 @@
 #include <fmt/format.h>
 
 #include "engine/convergence.hpp"
+#include "engine/deferred_signals.hpp"
 #include "engine/output.hpp"
+#include "engine/preflight.hpp"
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"
 #include "engine/sweep.hpp"
@@ -52,38 +54,52 @@ std::string clock_time(double seconds) {
   return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
 }
 
-// One line on stderr, rewritten in place at most four times a second, only on a terminal.
+// Progress of a wear run on stderr. On a terminal one line, rewritten in place at most four times a second;
+// elsewhere (a log, a batch job) a line each time another tenth of the cycles is done, or a minute has passed.
 class ProgressLine {
  public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled) {}
+  ProgressLine(bool enabled, bool terminal) : enabled_(enabled), terminal_(terminal) {}
   ~ProgressLine() { finish(); }
   bool enabled() const { return enabled_; }
 
   void update(const WearProgress& p) {
     const auto now = clock::now();
     if (!first_) first_ = std::pair{now, p.cycles};
-    if (shown_ && now - last_ < std::chrono::milliseconds(250) && p.cycles < p.total) return;
+    const int tenth = int(std::floor(10.0 * p.cycles / p.total));
+    if (terminal_) {
+      if (shown_ && now - last_ < std::chrono::milliseconds(250) && p.cycles < p.total) return;
+    } else if (shown_ && tenth <= tenth_ && now - last_ < std::chrono::minutes(1)) {
+      return;
+    }
     last_ = now;
     shown_ = true;
+    tenth_ = tenth;
     const double elapsed = std::chrono::duration<double>(now - first_->first).count();
     const double done = p.cycles - first_->second;  // in this process (a resumed run started part way)
     std::string left = "--";
     if (done > 0.0 && elapsed > 0.0) left = clock_time((p.total - p.cycles) * elapsed / done);
-    std::cerr << fmt::format("\r\033[Kwear: {:.0f} / {:.0f} cycles, ΔN {:.3g}, {:.1f}% of the limit, {} elapsed, ~{} left",
-                             p.cycles, p.total, p.dN, 100.0 * p.fraction, clock_time(elapsed), left)
-              << std::flush;
+    const std::string line =
+        fmt::format("wear: {:.0f} / {:.0f} cycles, ΔN {:.3g}, {:.1f}% of the limit, {} elapsed, ~{} left", p.cycles,
+                    p.total, p.dN, 100.0 * p.fraction, clock_time(elapsed), left);
+    std::cerr << (terminal_ ? "\r\033[K" + line : line + "\n") << std::flush;
   }
   void finish() {
-    if (shown_) std::cerr << "\n" << std::flush;
+    if (shown_ && terminal_) std::cerr << "\n" << std::flush;
     shown_ = false;
   }
 
  private:
   using clock = std::chrono::steady_clock;
-  bool enabled_, shown_ = false;
+  bool enabled_, terminal_, shown_ = false;
+  int tenth_ = -1;
   clock::time_point last_{};
   std::optional<std::pair<clock::time_point, double>> first_;
 };
+
+// Each warning on its own line on stderr (also with --quiet: a result the grid cannot resolve is never silent).
+void print_warnings(const std::vector<Warning>& warnings) {
+  for (const Warning& w : warnings) std::cerr << "warning: " << w.code << ": " << w.message << "\n";
+}
 
 // What a run found, on stdout: one line per stage that ran; --verbose adds how each stage was solved (against the
 // closed form, window, iterations, timings) and where the results are.
@@ -178,6 +194,11 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
 
 int run(const std::string& path, bool quiet, bool verbose, bool resume, double checkpoint_every) {
   const Scene scene = load_scene(path);
+  const Preflight checked = preflight(scene, path, OutputCommand::run);  // refuses before anything is written
+  print_warnings(checked.warnings);
+  if (!quiet && checked.wear_seconds > 60.0)
+    std::cerr << fmt::format("fretwear: {}: the wear stage will take about {}\n", scene.name,
+                             duration_words(checked.wear_seconds));
   WearControl control;
   if (scene.wear) {
     control.checkpoint = checkpoint_path(scene);
@@ -196,9 +217,9 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
   } else if (resume && !quiet) {
     std::cerr << fmt::format("fretwear: {}: the scene does not wear, nothing to resume: running it\n", scene.name);
   }
-  OutputFolder out(scene.output_dir);
+  OutputFolder out(scene.output_dir, OutputCommand::run);
   if (!quiet) std::cerr << fmt::format("fretwear: {}: normal contact on {} cells\n", scene.name, scene.cells);
-  ProgressLine progress(!quiet && ::isatty(STDERR_FILENO));
+  ProgressLine progress(!quiet, ::isatty(STDERR_FILENO) != 0);
   if (scene.wear) {
     // FRETWEAR_STEP_PAUSE_MS (tests only): a pause at each step boundary, so that a test's signal lands mid-run.
     const char* pause = std::getenv("FRETWEAR_STEP_PAUSE_MS");
@@ -210,11 +231,30 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     if (progress.enabled()) control.progress = [&progress](const WearProgress& p) { progress.update(p); };
     catch_stop_signals();
   }
+  // A scene refused while solving (a worn contact grown to the window's end) leaves nothing behind: not the
+  // checkpoint, nor the folder made for it.
+  std::error_code ec;
+  const bool checkpoint_folder_existed =
+      control.checkpoint.empty() || std::filesystem::exists(control.checkpoint.parent_path().empty()
+                                                                ? std::filesystem::path(".")
+                                                                : control.checkpoint.parent_path(),
+                                                            ec);
+  auto forget_checkpoint = [&] {
+    if (control.checkpoint.empty()) return;
+    std::filesystem::remove(control.checkpoint, ec);
+    if (!checkpoint_folder_existed) std::filesystem::remove(control.checkpoint.parent_path(), ec);  // when empty
+  };
   try {
-    const RunResult result = Simulation(scene).run(&control);
+    RunResult result = Simulation(scene).run(&control);
     progress.finish();
-    const auto summary = write_results(scene, result, out);
-    out.commit();
+    print_warnings(result.warnings);  // those of the results; the preflight's were printed before the run
+    result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());
+    nlohmann::json summary;
+    {
+      const DeferredStopSignals hold;  // the results are written whole, or not at all
+      summary = write_results(scene, result, out);
+      out.commit();
+    }
     if (result.wear && result.wear->interrupted) {
       std::cerr << fmt::format("fretwear: {}: stopped by signal {} at cycle {:.0f} of {:.0f} (recorded up to cycle "
                                "{:.0f}); results so far in {}/; continue with: fretwear run --resume {}\n",
@@ -222,31 +262,62 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
                                result.wear->records.back().cycles, scene.output_dir.string(), path);
       return kExitSignal + int(g_signal);
     }
-    if (scene.wear) {  // done: the checkpoint has served
-      std::error_code ec;
-      std::filesystem::remove(control.checkpoint, ec);
-    }
+    if (scene.wear) std::filesystem::remove(control.checkpoint, ec);  // done: the checkpoint has served
     if (!quiet) print_report(scene, result, summary, verbose);
   } catch (const ConvergenceError& e) {
     progress.finish();
+    const DeferredStopSignals hold;
     out.write_json("summary.json", {{"scene", scene.name}, {"version", kVersion}, {"status", "not_converged"},
                                     {"message", e.what()}});
     out.commit();
+    throw;
+  } catch (const InputError&) {
+    progress.finish();
+    if (!control.resume) forget_checkpoint();
     throw;
   }
   return 0;
 }
 
+int validate(const std::string& path, bool quiet, bool verbose) {
+  const Scene scene = load_scene(path);
+  const Preflight checked = preflight(scene, path, OutputCommand::run);
+  print_warnings(checked.warnings);
+  if (!quiet) {
+    std::cout << path << ": valid scene \"" << scene.name << "\"";
+    if (checked.wear_seconds > 60.0) std::cout << "; its wear stage will take about " << duration_words(checked.wear_seconds);
+    std::cout << "\n";
+  }
+  if (verbose) std::cout << scene.to_json().dump(2) << "\n";
+  return 0;
+}
+
 int convergence(const std::string& path, int from, int to, bool quiet) {
   const Scene scene = load_scene(path);
-  OutputFolder out(scene.output_dir);
+  preflight(scene, path, OutputCommand::convergence);
+  const std::filesystem::path dir = output_folder(scene, OutputCommand::convergence);
+  OutputFolder out(dir, OutputCommand::convergence);
   const ConvergenceStudy study = run_convergence(scene, from, to, quiet ? nullptr : &std::cerr);
   std::cout << study.table();
+  const DeferredStopSignals hold;
   out.write("convergence.csv", study.csv());
   out.write_json("scene.resolved.json", scene.to_json());
   out.commit();
-  if (!quiet) std::cout << "table in " << (scene.output_dir / "convergence.csv").string() << "\n";
+  if (!quiet) std::cout << "table in " << (dir / "convergence.csv").string() << "\n";
   return 0;
+}
+
+// The subcommands; a first word that is none of them (nor an option) is named in the error.
+const std::vector<std::string> kCommands{"run", "validate", "defaults", "convergence", "sweep"};
+
+std::optional<std::string> unknown_command(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') continue;
+    if (std::find(kCommands.begin(), kCommands.end(), word) != kCommands.end()) return std::nullopt;
+    return word;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -292,6 +363,12 @@ int main(int argc, char** argv) {
     sub->add_flag("-v,--verbose", verbose, "print more detail");
   }
 
+  if (const auto word = unknown_command(argc, argv)) {
+    std::cerr << fmt::format("fretwear: \"{}\" is not a command; the commands are run, validate, defaults, "
+                             "convergence and sweep (fretwear --help)\n",
+                             *word);
+    return kExitInvalid;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -300,12 +377,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*run_cmd) return run(scene_path, quiet, verbose, resume, checkpoint_every);
-    if (*validate_cmd) {
-      const Scene scene = load_scene(scene_path);
-      if (!quiet) std::cout << scene_path << ": valid scene \"" << scene.name << "\"\n";
-      if (verbose) std::cout << scene.to_json().dump(2) << "\n";
-      return 0;
-    }
+    if (*validate_cmd) return validate(scene_path, quiet, verbose);
     if (app.got_subcommand("defaults")) {
       std::cout << default_scene_json().dump(2) << "\n";
       return 0;

@@ -18,35 +18,158 @@ namespace fretwear {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
-  if (!dir_.has_filename()) dir_ = dir_.parent_path();  // "output/x/" names the folder x
-  staging_ = dir_;
-  staging_ += fmt::format(".partial-{}", ::getpid());
+namespace {
+
+// True when `a` is `b` or a folder above it (both absolute and normalised).
+bool is_same_or_above(const fs::path& a, const fs::path& b) {
+  auto ia = a.begin(), ib = b.begin();
+  for (; ia != a.end() && !ia->empty(); ++ia, ++ib)
+    if (ib == b.end() || *ia != *ib) return false;
+  return true;
+}
+
+// The absolute form of p with symbolic links, `.` and `..` resolved as far as p exists.
+fs::path resolved(const fs::path& p) {
   std::error_code ec;
-  // Staging folders of runs that were killed (their process is gone) are removed.
-  const fs::path parent = dir_.parent_path().empty() ? fs::path(".") : dir_.parent_path();
-  const std::string prefix = dir_.filename().string() + ".partial-";
-  for (const auto& e : fs::directory_iterator(parent, ec)) {
-    const std::string name = e.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string pid = name.substr(prefix.size());
-    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
-    if (::kill(pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) fs::remove_all(e.path(), ec);
+  fs::path r = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  if (ec) r = fs::absolute(p, ec).lexically_normal();
+  if (!r.has_filename() && r != r.root_path()) r = r.parent_path();
+  return r;
+}
+
+bool ours(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_regular_file(dir / kOutputMarker, ec);
+}
+
+// Removes a folder of fretwear's own (marked); leaves anything else where it is.
+void remove_ours(const fs::path& dir) {
+  std::error_code ec;
+  if (ours(dir)) fs::remove_all(dir, ec);
+}
+
+// The problems with writing into `target` (absolute), the folder `what` names.
+void check_target(const fs::path& target, const std::string& what, const fs::path& scene_dir,
+                  std::vector<std::string>& problems) {
+  std::error_code ec;
+  const fs::path cwd = resolved(fs::current_path(ec));
+  if (is_same_or_above(target, cwd)) {
+    problems.push_back(fmt::format("{}: \"{}\" is the working folder or a folder above it, whose files fretwear "
+                                   "would replace; give a folder of its own, e.g. output/<name>",
+                                   what, target.string()));
+    return;
   }
-  ec.clear();
-  fs::remove_all(staging_, ec);
-  fs::create_directories(staging_, ec);
-  if (ec || ::access(staging_.c_str(), W_OK) != 0) {
-    if (!ec) fs::remove_all(staging_, ec);
-    throw SceneError({fmt::format("output.dir: cannot write into \"{}\" ({}); give a folder you can write to",
-                                  dir_.string(), ec ? ec.message() : "permission denied")});
+  if (is_same_or_above(target, scene_dir)) {
+    problems.push_back(fmt::format("{}: \"{}\" holds the scene file, which fretwear would replace; give a folder of "
+                                   "its own, e.g. output/<name>",
+                                   what, target.string()));
+    return;
+  }
+  const auto status = fs::status(target, ec);
+  if (!fs::exists(status)) return;
+  if (!fs::is_directory(status)) {
+    problems.push_back(fmt::format("{}: \"{}\" is an existing file, which fretwear would replace; give the path of "
+                                   "a folder",
+                                   what, target.string()));
+  } else if (!ours(target) && !fs::is_empty(target, ec)) {
+    problems.push_back(fmt::format("{}: the folder \"{}\" holds files fretwear did not write (it has no {} marker) "
+                                   "and would replace; give a new or an empty folder, or remove this one",
+                                   what, target.string(), kOutputMarker));
   }
 }
 
+}  // namespace
+
+const char* subfolder(OutputCommand command) {
+  switch (command) {
+    case OutputCommand::run: return "";
+    case OutputCommand::convergence: return "convergence";
+    case OutputCommand::sweep: return "sweep";
+  }
+  return "";
+}
+
+fs::path output_folder(const Scene& scene, OutputCommand command) {
+  return command == OutputCommand::run ? scene.output_dir : scene.output_dir / subfolder(command);
+}
+
+std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path& scene_file, OutputCommand command) {
+  std::vector<std::string> problems;
+  const fs::path& dir = scene.output_dir;
+  fs::path last = dir;
+  if (!last.has_filename()) last = last.parent_path();  // "output/x/" names the folder x
+  if (last.filename() == "." || last.filename() == ".." || dir.empty()) {
+    problems.push_back(fmt::format("output.dir: \"{}\" names the folder \".\" or \"..\", whose files fretwear would "
+                                   "replace; give a folder of its own, e.g. output/<name>",
+                                   dir.string()));
+    return problems;
+  }
+  const fs::path scene_dir = scene_file.empty() ? fs::path() : resolved(scene_file).parent_path();
+  const fs::path target = resolved(dir);
+  check_target(target, "output.dir", scene_dir, problems);
+  if (command != OutputCommand::run && problems.empty()) {
+    const std::string sub = subfolder(command);
+    check_target(target / sub, fmt::format("output.dir (its subfolder {}/)", sub), scene_dir, problems);
+  }
+  return problems;
+}
+
+OutputFolder::OutputFolder(fs::path dir, OutputCommand command) : dir_(std::move(dir)), command_(command) {
+  if (!dir_.has_filename()) dir_ = dir_.parent_path();
+  staging_ = dir_;
+  staging_ += fmt::format(".partial-{}", ::getpid());
+}
+
+void OutputFolder::stage() const {
+  if (staged_) return;
+  std::error_code ec;
+  // The folders above the staging folder, made here (deepest last) and removed again if the command fails. A made
+  // parent of a command's subfolder is the run's folder: it is marked as fretwear's own.
+  for (fs::path p = fs::absolute(staging_, ec).parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
+    made_parents_.insert(made_parents_.begin(), p);
+  // Staging folders of commands that were killed (their process is gone) are removed.
+  const fs::path parent = dir_.parent_path().empty() ? fs::path(".") : dir_.parent_path();
+  const std::string name = dir_.filename().string();
+  for (const auto& e : fs::directory_iterator(parent, ec)) {
+    const std::string entry = e.path().filename().string();
+    for (const std::string& prefix : {name + ".partial-", name + ".old-"}) {
+      if (entry.rfind(prefix, 0) != 0) continue;
+      const std::string pid = entry.substr(prefix.size());
+      if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+      if (::kill(pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) remove_ours(e.path());
+    }
+  }
+  ec.clear();
+  remove_ours(staging_);
+  fs::create_directories(staging_, ec);
+  if (!ec) std::ofstream(staging_ / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
+  if (!ec && command_ != OutputCommand::run && !made_parents_.empty() &&
+      made_parents_.back() == fs::absolute(dir_).parent_path())
+    std::ofstream(made_parents_.back() / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
+  if (ec || ::access(staging_.c_str(), W_OK) != 0 || !ours(staging_)) {
+    const std::string why = ec ? ec.message() : "permission denied";
+    fs::remove_all(staging_, ec);
+    throw SceneError({fmt::format("output.dir: cannot write into \"{}\" ({}); give a folder you can write to",
+                                  dir_.string(), why)});
+  }
+  staged_ = true;
+}
+
 OutputFolder::~OutputFolder() {
-  if (committed_) return;
+  if (committed_ || !staged_) return;
   std::error_code ec;
   fs::remove_all(staging_, ec);
+  for (auto p = made_parents_.rbegin(); p != made_parents_.rend(); ++p) {
+    int entries = 0;
+    for (auto it = fs::directory_iterator(*p, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) ++entries;
+    if (entries == 1) fs::remove(*p / kOutputMarker, ec);  // a marker made here, alone
+    fs::remove(*p, ec);                                    // only when empty
+  }
+}
+
+fs::path OutputFolder::path(const std::string& file) const {
+  stage();
+  return staging_ / file;
 }
 
 void OutputFolder::write(const std::string& file, const std::string& content) const {
@@ -58,10 +181,36 @@ void OutputFolder::write(const std::string& file, const std::string& content) co
 void OutputFolder::write_json(const std::string& file, const json& j) const { write(file, j.dump(2) + "\n"); }
 
 void OutputFolder::commit() {
+  stage();
   std::error_code ec;
-  fs::remove_all(dir_, ec);
-  fs::rename(staging_, dir_, ec);
-  if (ec) throw Error(fmt::format("cannot move the results into {}: {}", dir_.string(), ec.message()));
+  if (fs::exists(fs::symlink_status(dir_, ec))) {
+    if (!fs::is_directory(dir_, ec) || (!ours(dir_) && !fs::is_empty(dir_, ec)))  // checked before; changed since
+      throw Error(fmt::format("{} changed while fretwear ran and is no longer a folder of its own; the results are "
+                              "in {}",
+                              dir_.string(), staging_.string()));
+    if (command_ == OutputCommand::run)  // the other commands' results stay
+      for (const OutputCommand other : {OutputCommand::convergence, OutputCommand::sweep}) {
+        const fs::path sub = dir_ / subfolder(other);
+        if (fs::exists(sub, ec)) fs::rename(sub, staging_ / sub.filename(), ec);
+      }
+    fs::path old = dir_;
+    old += fmt::format(".old-{}", ::getpid());
+    if (ours(dir_)) {
+      fs::rename(dir_, old, ec);
+    } else {
+      fs::remove(dir_, ec);  // empty
+    }
+    if (ec) throw Error(fmt::format("cannot replace {}: {}; the results are in {}", dir_.string(), ec.message(),
+                                    staging_.string()));
+    fs::rename(staging_, dir_, ec);
+    if (ec) throw Error(fmt::format("cannot move the results into {}: {}; they are in {}", dir_.string(), ec.message(),
+                                    staging_.string()));
+    remove_ours(old);
+  } else {
+    fs::rename(staging_, dir_, ec);
+    if (ec) throw Error(fmt::format("cannot move the results into {}: {}; they are in {}", dir_.string(), ec.message(),
+                                    staging_.string()));
+  }
   committed_ = true;
 }
 
@@ -72,7 +221,7 @@ bool run_gnuplot(const fs::path& dir, const std::string& script_file) {
   }
   const std::string cmd = fmt::format("cd '{}' && gnuplot '{}' > gnuplot.log 2>&1", dir.string(), script_file);
   if (std::system(cmd.c_str()) != 0) {
-    std::cerr << "fretwear: gnuplot failed on " << (dir / script_file).string() << "; see gnuplot.log\n";
+    std::cerr << "fretwear: gnuplot failed on " << script_file << "; see gnuplot.log among the results\n";
     return false;
   }
   std::error_code ec;
@@ -468,7 +617,9 @@ set grid
   s += "set ylabel 'pressure p (MPa)'\n";
   s += svg_and_png("wear_pressure", series("$7*1e-6", "asymptote"));
 
-  // Against cycles: log axis; the unworn record (cycles = 0) cannot be shown there.
+  // Against cycles: log axis; the unworn record (cycles = 0) cannot be shown there, and a run stopped before its
+  // first record after it has nothing to show.
+  if (!(last.cycles > 0.0)) return s;
   double n_lo = last.cycles;
   for (const WearRecord& rec : w.records)
     if (rec.cycles > 0.0) n_lo = std::min(n_lo, rec.cycles);
@@ -631,8 +782,11 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
       out.write("wear.gp", wear_plot_script(scene, result.normal, w));
       if (run_gnuplot(out.path(""), "wear.gp")) {
         plots.insert(plots.end(), {"wear_depth.svg", "wear_depth.png", "wear_pressure.svg", "wear_pressure.png"});
-        if (w.records.front().stick_zone) plots.insert(plots.end(), {"wear_stick_zone.svg", "wear_stick_zone.png"});
-        plots.insert(plots.end(), {"wear_area.svg", "wear_area.png"});
+        if (w.records.back().cycles > 0.0) {  // against cycles, on a log axis
+          if (w.records.front().stick_zone)
+            plots.insert(plots.end(), {"wear_stick_zone.svg", "wear_stick_zone.png"});
+          plots.insert(plots.end(), {"wear_area.svg", "wear_area.png"});
+        }
       }
     }
   }

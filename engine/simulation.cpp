@@ -130,7 +130,14 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
   r.g0 = model.g0;
   const NormalSolver solver(*model.kernel);
   r.summary = solver.solve(r.g0, scene.P, r.state);
+  if (r.summary.termination == Termination::no_admissible_cell)
+    throw InputError(fmt::format("grid.window: [{:.6g}, {:.6g}] m holds no cell where the profile's gap is finite (the "
+                                 "pad is absent there, or its gap overflows); give a window around the contact",
+                                 g.x_min, g.x_max));
   r.zones = locate_zones(g, r.state.p, r.g0);
+  if (r.zones.empty() && r.summary.converged())
+    throw ConvergenceError(fmt::format("normal contact: the solve carried the load on no cell of {} (residual {:.3g})",
+                                       g.n, r.summary.residual));
   // A contact clipped by a given window is the scene's problem, whether or not the solve converged.
   if (!r.zones.empty()) {
     const bool at_left = r.zones.front().first_cell == 0 && r.zones.front().left.method != EdgeMethod::corner;
@@ -300,6 +307,7 @@ RunResult Simulation::run(const WearControl* control) const {
     }
   }
   result.timings.total = seconds_since(t0);
+  result.warnings = result_warnings(scene_, result);
   return result;
 }
 
@@ -389,6 +397,8 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
       {"timings", timings},
   };
   if (result.cycle) summary["cycle"] = cycle;
+  summary["warnings"] = json::array();
+  for (const Warning& w : result.warnings) summary["warnings"].push_back({{"code", w.code}, {"message", w.message}});
   if (!result.stress_maps.empty()) {
     summary["effects_run"].push_back("stress");
     summary["timings"]["stress"] = *result.timings.stress;

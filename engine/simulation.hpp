@@ -19,6 +19,7 @@
 #include "contact/window.hpp"
 #include "engine/crack_stage.hpp"
 #include "engine/scene.hpp"
+#include "engine/warnings.hpp"
 
 namespace fretwear {
 
@@ -80,6 +81,7 @@ struct RunResult {
   double crack_x = 0.0;                    // where the crack is (m)
   std::shared_ptr<const FatigueStage> fatigue;  // SWT and Ruiz, with the stress maps of a cycle
   Timings timings;
+  std::vector<Warning> warnings;  // what the results cannot be trusted for (engine/warnings.hpp)
 };
 
 // The bodies, the profile and the discretisation of a scene: what every stage shares.
@@ -96,7 +98,7 @@ struct Model {
 Model make_model(const Scene& scene, int cells = 0);
 
 // The normal contact. Throws ConvergenceError when the solve does not converge, InputError when the contact
-// reaches the end of a given window.
+// reaches the end of a given window or no cell of it can touch.
 NormalResult solve_normal(const Scene& scene, const Model& model);
 NormalResult solve_normal(const Scene& scene, int cells = 0);
 

@@ -9,7 +9,9 @@
 
 #include <fmt/format.h>
 
+#include "engine/deferred_signals.hpp"
 #include "engine/output.hpp"
+#include "engine/preflight.hpp"
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"
 
@@ -87,7 +89,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   json base = json::parse(in, nullptr, false);
   SweepResult result;
   result.variations = variations;
-  result.dir = base_scene.output_dir;
+  result.dir = output_folder(base_scene, OutputCommand::sweep);
 
   // Every combination, validated before anything runs.
   std::vector<Scene> scenes;
@@ -111,15 +113,18 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     j["output"] = {{"dir", (result.dir / "runs" / name).string()}, {"plots", base_scene.plots}};
     try {
       scenes.push_back(parse_scene(j));
+      for (const auto& p : physics_problems(scenes.back())) problems.push_back(name + ": " + p);
     } catch (const SceneError& e) {
       for (const auto& p : e.problems()) problems.push_back(name + ": " + p);
     }
     run.name = name;
     result.runs.push_back(run);
   }
+  const std::vector<std::string> target = output_dir_problems(base_scene, scene_file, OutputCommand::sweep);
+  problems.insert(problems.begin(), target.begin(), target.end());
   if (!problems.empty()) throw SceneError(problems);
 
-  OutputFolder out(result.dir);
+  OutputFolder out(result.dir, OutputCommand::sweep);
   fs::create_directories(out.path("runs"));
   std::atomic<std::size_t> next{0};
   std::mutex report;
@@ -208,6 +213,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     out.write("sweep.gp", gp);
     run_gnuplot(out.path(""), "sweep.gp");
   }
+  const DeferredStopSignals hold;
   out.commit();
   return result;
 }

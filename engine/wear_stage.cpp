@@ -20,6 +20,7 @@
 #include "contact/contact_zones.hpp"
 #include "contact/error.hpp"
 #include "contact/half_plane_kernel.hpp"
+#include "engine/deferred_signals.hpp"
 #include "engine/simulation.hpp"
 #include "engine/version.hpp"
 #include "wear/wear_law.hpp"
@@ -289,6 +290,11 @@ std::optional<json> read_checkpoint(const std::filesystem::path& path, const Sce
 
 void write_checkpoint(const std::filesystem::path& path, const json& j) {
   const std::vector<std::uint8_t> bytes = json::to_cbor(j);
+  const DeferredStopSignals hold;  // no temporary file left by a signal
+  if (path.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);  // an error shows at open()
+  }
   std::filesystem::path tmp = path;
   tmp += fmt::format(".tmp-{}", ::getpid());
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -502,6 +508,53 @@ WearRecord record_from(const json& j) {
 }  // namespace
 
 
+namespace {
+
+// The contact the wear stage sees: the incremental route under displacement control or when the scene asks for it,
+// the analogy otherwise.
+std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const NormalResult& normal) {
+  if (!wear_uses_incremental(scene)) return std::make_unique<AnalogyContactResponse>(scene, model);
+  // The datum of the cycle stage (engine/simulation.cpp, solve_cycle): the centre of the unworn contact, 10
+  // half-widths (or grid.reference_depth) below it.
+  const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
+  const double depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
+  return std::make_unique<IncrementalContactResponse>(scene, model, 0.5 * (x_left + x_right), depth);
+}
+
+}  // namespace
+
+std::string cycle_by_cycle_problem(double stability_limit) {
+  if (stability_limit > wear::kCycle || stability_limit == 0.0) return {};
+  return fmt::format("effects.wear.stepper: \"cycle_by_cycle\" wears one cycle at a time, an explicit jump of one "
+                     "cycle, which is unstable here: the explicit stability limit 1.5 Δx/(E* c s_max) is {:.3g} "
+                     "cycles. Use \"implicit\", or coarser cells or a smaller wear coefficient",
+                     stability_limit);
+}
+
+WearEstimate estimate_wear(const Scene& scene, const Model& model, const NormalResult& normal) {
+  const WearEffect& effect = *scene.wear;
+  const wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction,
+                          effect.pad_fraction};
+  std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, normal);
+  const std::vector<double> w(model.grid.n, 0.0);
+  wear::CycleResponse response;
+  contact->respond(w, response);  // cold: the first cycle's solves start from nothing
+  const auto t0 = std::chrono::steady_clock::now();
+  contact->respond(w, response);  // warm-started, as the run's are
+  WearEstimate e;
+  e.seconds_per_response = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double s_max = 0.0;
+  for (double s : response.s) s_max = std::max(s_max, s);
+  if (s_max == 0.0) return e;  // nothing slips: nothing wears
+  e.stability_limit = wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), law.rate_coefficient(), s_max);
+  if (effect.stepper == "cycle_by_cycle") {
+    e.responses = effect.cycles;
+  } else if (effect.stepper == "explicit") {  // Dormand–Prince: six new stages a step, steps at the cap
+    e.responses = 6.0 * std::ceil(effect.cycles / (kExplicitCapFraction * e.stability_limit));
+  }
+  return e;
+}
+
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const WearControl& control) {
   const WearEffect& effect = *scene.wear;
   wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction, effect.pad_fraction};
@@ -509,18 +562,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.rate_coefficient = law.rate_coefficient();
   stage.asymptote = wear_asymptote(scene, model, normal);
 
-  std::unique_ptr<WearContact> chosen;
-  if (wear_uses_incremental(scene)) {
-    // The datum of the cycle stage (engine/simulation.cpp, solve_cycle): the centre of the unworn contact, 10
-    // half-widths (or grid.reference_depth) below it.
-    const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
-    const double depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
-    chosen = std::make_unique<IncrementalContactResponse>(scene, model, 0.5 * (x_left + x_right), depth);
-    stage.route = "incremental";
-  } else {
-    chosen = std::make_unique<AnalogyContactResponse>(scene, model);
-    stage.route = "analogy";
-  }
+  std::unique_ptr<WearContact> chosen = make_wear_contact(scene, model, normal);
+  stage.route = wear_uses_incremental(scene) ? "incremental" : "analogy";
   WearContact& contact = *chosen;
   const int n = model.grid.n;
   const double h = model.grid.h();
@@ -656,12 +699,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     stage.explicit_max_step = stepper.stats().max_step;
     stage.responses = int(rate.evaluations());
   } else if (effect.stepper == "cycle_by_cycle") {
-    if (!(stage.stability_limit > wear::kCycle))
-      throw UnsupportedError(fmt::format(
-          "effects.wear.stepper: \"cycle_by_cycle\" wears one cycle at a time, an explicit jump of one cycle, which "
-          "is unstable here: the explicit stability limit 1.5 Δx/(E* c s_max) is {:.3g} cycles. Use \"implicit\", "
-          "or coarser cells or a smaller wear coefficient",
-          stage.stability_limit));
+    if (const std::string problem = cycle_by_cycle_problem(stage.stability_limit); !problem.empty())
+      throw UnsupportedError(problem);
     wear::WearRateSystem rate(contact, stage.rate_coefficient);
     AlwaysAccepted<wear::CycleByCycleStepper> stepper;
     const DriveState s = drive(

@@ -228,6 +228,20 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
 // margin of about 1.5 for the limit's drift as the profile wears and for the estimate's own approximation.
 inline constexpr double kExplicitCapFraction = 0.9;
 
+// What a wear run costs before it starts, from its first cycle: the explicit stability limit and the responses (one
+// steady cycle each) the stepper will take. The implicit stepper takes a few hundred whatever the cycle count and is
+// not estimated (responses 0). Throws what run_wear would throw at its first cycle.
+struct WearEstimate {
+  double seconds_per_response = 0.0;  // wall time of one warm-started cycle response (s)
+  double stability_limit = 0.0;       // 1.5 Δx/(E* c s_max) (cycles); 0 when nothing slips
+  double responses = 0.0;             // cycle responses the run will take (at least)
+  double seconds() const { return responses * seconds_per_response; }
+};
+WearEstimate estimate_wear(const Scene& scene, const Model& model, const NormalResult& normal);
+// Why the stepper "cycle_by_cycle" cannot run at this explicit stability limit (cycles): a jump of one cycle past it
+// is unstable. Empty when it can (or nothing slips: limit 0).
+std::string cycle_by_cycle_problem(double stability_limit);
+
 // Runs the wear of a scene with the stepper it names (effects.wear.stepper): "implicit" (the default), "explicit"
 // (Dormand–Prince capped below the stability limit; small problems) or "cycle_by_cycle" (every cycle worn, the
 // reference on short runs; throws UnsupportedError when one cycle exceeds the stability limit). The normal solution

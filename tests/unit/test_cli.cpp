@@ -136,13 +136,13 @@ TEST_CASE("validate writes nothing; defaults prints a valid scene; --version; us
   CHECK(run_cli(tmp.path, "--help") == 0);
 }
 
-TEST_CASE("convergence writes its table") {
+TEST_CASE("convergence writes its table into the convergence subfolder of output.dir") {
   TempDir tmp;
   write(tmp.path / "s.json", kGood);
   std::string out;
   REQUIRE(run_cli(tmp.path, "convergence s.json --from 128 --to 512 -q", &out) == 0);
   CHECK(out.find("errors against hertz") != std::string::npos);
-  std::ifstream csv(tmp.path / "output" / "cli" / "convergence.csv");
+  std::ifstream csv(tmp.path / "output" / "cli" / "convergence" / "convergence.csv");
   std::string line;
   int rows = 0;
   while (std::getline(csv, line)) ++rows;

@@ -37,7 +37,7 @@ fs::path write_scene(const fs::path& dir) {
 }
 }  // namespace
 
-TEST_CASE("a 2 x 2 sweep on two threads: every run, its folder, the table; the stick share is sqrt(1 - Q/fP)") {
+TEST_CASE("a 2 x 2 sweep on two threads into output.dir/sweep: runs, folders, table; stick share sqrt(1 - Q/fP)") {
   Scratch scratch;
   const fs::path scene = write_scene(scratch.path);
   const SweepResult r = run_sweep(scene, {parse_variation("load.Q.ratio=0.36,0.64"), parse_variation("load.P=1e5,4e5")},
@@ -46,7 +46,7 @@ TEST_CASE("a 2 x 2 sweep on two threads: every run, its folder, the table; the s
   for (const SweepRun& run : r.runs) {
     CAPTURE(run.name);
     REQUIRE(run.status == 0);
-    CHECK(fs::exists(scratch.path / "out" / "runs" / run.name / "summary.json"));
+    CHECK(fs::exists(scratch.path / "out" / "sweep" / "runs" / run.name / "summary.json"));
     // Hertz: c/a = sqrt(1 − Q/fP) at any P; the edges are located to a fraction of a cell (1/170 of the contact).
     const double ratio = run.values[0].get<double>();
     const auto stick = run.summary["cycle"]["stick_zone"], extent = run.summary["contact"]["extent"];
@@ -54,11 +54,11 @@ TEST_CASE("a 2 x 2 sweep on two threads: every run, its folder, the table; the s
                          (extent[1].get<double>() - extent[0].get<double>());
     CHECK(std::abs(share - std::sqrt(1.0 - ratio)) < 0.01);
   }
-  std::ifstream csv(scratch.path / "out" / "sweep.csv");
+  std::ifstream csv(scratch.path / "out" / "sweep" / "sweep.csv");
   int lines = 0;
   for (std::string line; std::getline(csv, line);) ++lines;
   CHECK(lines == 5);
-  CHECK(fs::exists(scratch.path / "out" / "sweep.json"));
+  CHECK(fs::exists(scratch.path / "out" / "sweep" / "sweep.json"));
 }
 
 TEST_CASE("a sweep with an invalid variant names it and runs nothing") {
@@ -79,6 +79,6 @@ TEST_CASE("fretwear sweep on the command line: runs, table, exit 0; a bad --vary
   const fs::path scene = write_scene(scratch.path);
   const std::string base = "cd '" + scratch.path.string() + "' && '" FRETWEAR_EXE "' sweep '" + scene.string() + "' ";
   CHECK(WEXITSTATUS(std::system((base + "--vary load.Q.ratio=0.2,0.4 --jobs 2 -q").c_str())) == 0);
-  CHECK(fs::exists(scratch.path / "out" / "sweep.csv"));
+  CHECK(fs::exists(scratch.path / "out" / "sweep" / "sweep.csv"));
   CHECK(WEXITSTATUS(std::system((base + "--vary load.Q.ratio -q 2>/dev/null").c_str())) == 2);
 }

@@ -1,0 +1,40 @@
+// What a command can know of a scene before it solves anything, checked by `fretwear validate` too, so that a scene
+// `validate` passes is not refused by `run` (docs/SCENES.md, "Output folders" and "Warnings"): the output folder;
+// the window and the contact (a contact the given window clips, a window in which no cell can touch, the load–size
+// integral of the default window); the strains linear elasticity allows; the route the cycle needs; the first wear
+// cycle (a regime the wear stage cannot follow); and the wear run's time, refused past a day.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "engine/output.hpp"
+#include "engine/scene.hpp"
+#include "engine/warnings.hpp"
+
+namespace fretwear {
+
+// The largest mean contact strain p_mean / E* accepted: half-plane linear elasticity needs strains well below one
+// (a contact small against the radii of the bodies: for Hertz p_mean / E* = π a / (8 R)).
+inline constexpr double kMaxContactStrain = 0.05;
+// Wear runs estimated to take longer than this (s) are refused, naming the stepper and what to use instead.
+inline constexpr double kMaxRunSeconds = 86400.0;
+
+struct Preflight {
+  std::vector<Warning> warnings;  // a wear run estimated past kLongRunSeconds
+  double wear_seconds = 0.0;      // estimated wall time of the wear stage (s); 0 when short or not estimated
+};
+
+// The problems of the scene's physics that show before solving (every one, as "key: what is wrong; what to do").
+// Solves the normal contact, and the first cycle where the route or the wear stage needs it. A solve that does not
+// converge is no problem of the scene's: the run reports it (exit status 3).
+std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflight = nullptr);
+
+// Every check of the scene before `command` solves it: output_dir_problems() and physics_problems(). Throws
+// SceneError listing every problem. scene_file: where the scene was read ("" for a scene built in memory).
+Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command);
+
+// A duration in the unit a person reads it in: "45 s", "12 min", "3.2 h", "41 days", "3.1e+04 years".
+std::string duration_words(double seconds);
+
+}  // namespace fretwear

@@ -1,0 +1,135 @@
+#include "engine/warnings.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "contact/closed_form.hpp"
+#include "engine/simulation.hpp"
+#include "engine/wear_stage.hpp"
+
+namespace fretwear {
+namespace {
+
+void contact_resolution(const NormalResult& n, std::vector<Warning>& out) {
+  for (std::size_t k = 0; k < n.zones.size(); ++k) {
+    const Zone& z = n.zones[k];
+    const int cells = z.last_cell - z.first_cell + 1;
+    if (cells < kMinContactCells)
+      out.push_back({"contact_under_resolved",
+                     fmt::format("contact zone {} of {} spans {} cell(s) of {:.4g} m; at least {} resolve its pressure "
+                                 "(p_max and the extent are grid-dependent): give more grid.cells or a narrower "
+                                 "grid.window",
+                                 k + 1, n.zones.size(), cells, n.grid.h(), kMinContactCells)});
+  }
+}
+
+void closed_form_missed(const NormalResult& n, std::vector<Warning>& out) {
+  if (!n.reference) return;
+  const Reference& ref = *n.reference;
+  const double error = std::max(ref.p_max_error, ref.extent_error);
+  if (error > kClosedFormTolerance)
+    out.push_back({"closed_form_missed",
+                   fmt::format("the contact misses its closed form ({}) by {:.3g} % (p_max {:.3g} %, extent {:.3g} % of "
+                               "the half-width), more than {:.0f} %: give more grid.cells",
+                               ref.kind, 100.0 * error, 100.0 * ref.p_max_error, 100.0 * ref.extent_error,
+                               100.0 * kClosedFormTolerance)});
+}
+
+// Each contact zone's slip zones at the top of the cycle: between its ends and the stick zones inside it.
+void slip_resolution(const NormalResult& n, const CycleStage& cycle, std::vector<Warning>& out) {
+  const CycleResult& c = cycle.result;
+  if (c.regime == Regime::gross_slip || c.stick_zones.empty()) return;
+  const double h = n.grid.h();
+  double narrowest = INFINITY;
+  for (const Zone& z : n.zones) {
+    double first = INFINITY, last = -INFINITY;
+    for (const auto& s : c.stick_zones)
+      if (s.second > z.left.x && s.first < z.right.x) first = std::min(first, s.first), last = std::max(last, s.second);
+    if (first > last) continue;  // the whole zone slips
+    // A stick zone reaching a zone's end (a complete contact whose corners stick) leaves no slip zone there.
+    for (const double width : {first - z.left.x, z.right.x - last})
+      if (width > 0.0) narrowest = std::min(narrowest, width);
+  }
+  if (narrowest < kMinSlipCells * h)
+    out.push_back({"slip_zone_under_resolved",
+                   fmt::format("the narrowest slip zone spans {:.3g} cell(s) of {:.4g} m; at least {} resolve the slip "
+                               "and the dissipated energy: give more grid.cells or a narrower grid.window",
+                               narrowest / h, h, kMinSlipCells)});
+}
+
+// The Mindlin stick zone of a Hertz contact under force control (c/a = √(1 − Q/fP), shifted by a bulk stress;
+// PHYSICS.md, "Partial slip"), where it holds: similar bodies, one zone, in phase, partial slip.
+void mindlin_missed(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
+  const NormalResult& n = r.normal;
+  if (!r.cycle || !n.reference || n.reference->kind != "hertz" || scene.control != LoadControl::force ||
+      !scene.history.empty() || !scene.similar || !r.cycle->result.stick_zone ||
+      r.cycle->result.regime != Regime::partial_slip)
+    return;
+  const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
+  const auto hz = closed_form::hertz(scene.P, pair.A(), scene.profile.R);
+  const auto stick = closed_form::hertz_stick(hz, r.cycle->Q_max / (r.cycle->f * scene.P), r.cycle->f, scene.bulk_stress);
+  const auto [left, right] = *r.cycle->result.stick_zone;
+  const double centre = n.reference->centre + stick.centre;
+  const double error = std::max(std::abs(left - (centre - stick.c)), std::abs(right - (centre + stick.c))) / hz.a;
+  if (error > kClosedFormTolerance)
+    out.push_back({"closed_form_missed",
+                   fmt::format("the stick zone misses its closed form (Cattaneo–Mindlin, c = {:.4g} m) by {:.3g} % of "
+                               "the contact half-width, more than {:.0f} %: give more grid.cells",
+                               stick.c, 100.0 * error, 100.0 * kClosedFormTolerance)});
+}
+
+void crack_placement(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
+  const Grid& g = r.normal.grid;
+  const double width = g.x_max - g.x_min;
+  if (r.crack_x < g.x_min || r.crack_x > g.x_max)
+    out.push_back({"crack_outside_window",
+                   fmt::format("the crack at x = {:.4g} m lies outside the window [{:.4g}, {:.4g}] m, where the "
+                               "contact loads nothing: its SIFs are those of the bulk stress alone; place it at the "
+                               "contact (\"trailing_edge\", \"leading_edge\") or widen grid.window",
+                               r.crack_x, g.x_min, g.x_max)});
+  const double longest = *std::max_element(scene.crack->lengths.begin(), scene.crack->lengths.end());
+  if (longest > width)
+    out.push_back({"crack_longer_than_window",
+                   fmt::format("the longest crack, {:.4g} m, is longer than the window is wide ({:.4g} m): the contact "
+                               "tractions it sees are cut off at the window's ends; give shorter lengths or a wider "
+                               "grid.window",
+                               longest, width)});
+}
+
+// The run approaches the asymptote from below; past it by more than the discretisation error of the two (the worn
+// zone's edges located to about a cell each, a few cells over its width, and the stepper's tolerance), the grid
+// cannot resolve the approach.
+void wear_overshoot(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
+  const WearStage& w = *r.wear;
+  if (!w.asymptote.unavailable.empty() || !(w.asymptote.worn_area > 0.0)) return;
+  const double h = r.normal.grid.h();
+  const double width = w.asymptote.extent.second - w.asymptote.extent.first;
+  const double allowed = 4.0 * h / width + scene.wear->tolerance;
+  const double fraction = w.records.back().fraction;
+  if (fraction > 1.0 + allowed)
+    out.push_back({"wear_past_asymptote",
+                   fmt::format("the worn area is {:.2f} % of the directly computed asymptote, past it by more than the "
+                               "estimated discretisation error ({:.2f} %: 4 of the worn zone's {:.0f} cells and the "
+                               "stepper's tolerance); the worn state near the limit is under-resolved: give more "
+                               "grid.cells",
+                               100.0 * fraction, 100.0 * allowed, width / h)});
+}
+
+}  // namespace
+
+std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result) {
+  std::vector<Warning> out;
+  contact_resolution(result.normal, out);
+  closed_form_missed(result.normal, out);
+  if (result.cycle) {
+    slip_resolution(result.normal, *result.cycle, out);
+    mindlin_missed(scene, result, out);
+  }
+  if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out);
+  if (result.wear && !result.wear->records.empty()) wear_overshoot(scene, result, out);
+  return out;
+}
+
+}  // namespace fretwear

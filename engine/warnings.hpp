@@ -1,0 +1,31 @@
+// Warnings (docs/SCENES.md, "Warnings"): a run that completes but whose results the grid cannot resolve, or that
+// misses a closed form it has, or that will take long, says so. Each has a code a script can test and a sentence
+// for a person; the program prints them on stderr ("warning: <code>: <message>") and writes them in summary.json.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fretwear {
+
+struct Scene;
+struct RunResult;
+
+struct Warning {
+  std::string code;     // e.g. "contact_under_resolved"
+  std::string message;  // what is wrong, with the numbers, and what to do
+};
+
+// The fewest cells a contact zone and a slip zone must span to be resolved, the share by which a closed form may be
+// missed, and the run time past which a warning is given (s).
+inline constexpr int kMinContactCells = 16;
+inline constexpr int kMinSlipCells = 4;
+inline constexpr double kClosedFormTolerance = 0.05;
+inline constexpr double kLongRunSeconds = 3600.0;
+
+// What the results of a completed run cannot be trusted for: under-resolved contact and slip zones, a closed form
+// missed by more than kClosedFormTolerance (Hertz, the punches, the Mindlin stick zone), a crack longer than the
+// window or outside it, a worn area past the directly computed asymptote by more than the discretisation error.
+std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result);
+
+}  // namespace fretwear

@@ -51,9 +51,9 @@ void check_wear(const Scene& scene, const Model& model, const NormalResult& norm
                       ? fmt::format(", steps capped below the stability limit of {:.4g} cycles", e.stability_limit)
                       : std::string());
   if (t > kMaxRunSeconds) {
-    problems.push_back(fmt::format("effects.wear.cycles: {}; fretwear refuses a run estimated past {}: use stepper "
+    problems.push_back(fmt::format("effects.wear.cycles: {}; fretwear refuses a run estimated past a day: use stepper "
                                    "\"implicit\" (a few hundred solves for any number of cycles), or fewer cycles",
-                                   estimate, duration_words(kMaxRunSeconds)));
+                                   estimate));
     return;
   }
   if (!preflight) return;

@@ -112,7 +112,14 @@ Model make_model(const Scene& scene, int cells) {
     return model_on(scene, Grid{scene.window->first, scene.window->second, cells},
                     {scene.window->first, scene.window->second, "given", 0.0});
   }
-  WindowChoice w = choose_window(profile, pair.A(), scene.P_max(), cells);  // a history's largest P too
+  WindowChoice w;
+  try {
+    w = choose_window(profile, pair.A(), scene.P_max(), cells);  // a history's largest P too
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("grid.window: cannot be chosen for this profile and load ({}); give grid.window, "
+                                 "or check load.P and the profile's size",
+                                 e.what()));
+  }
   if (scene.wear) w = widen_for_wear(scene, profile, w);
   return model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w);
 }

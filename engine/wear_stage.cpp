@@ -4,12 +4,14 @@
 #include <chrono>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <thread>
 
 #include <boost/numeric/odeint/integrate/max_step_checker.hpp>
 #include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
@@ -311,6 +313,10 @@ void write_checkpoint(const std::filesystem::path& path, const json& j) {
     }
     done += std::size_t(k);
   }
+  // FRETWEAR_CHECKPOINT_PAUSE_MS (tests only): a pause with the temporary file written, so that a test's signals
+  // land while the checkpoint is being put in place.
+  if (const char* pause = std::getenv("FRETWEAR_CHECKPOINT_PAUSE_MS"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
   if (::fsync(fd) != 0 || ::close(fd) != 0) {
     ::unlink(tmp.c_str());
     throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));

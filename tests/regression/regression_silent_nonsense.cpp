@@ -1,0 +1,99 @@
+// Runs that completed with nonsense and no word: a contact over two cells of a given window (p_max 99 % off the
+// closed form), a radius of 1e-308 m (a slip of 1e205 m), a crack a metre long or a metre outside the window, a
+// 1e12-cycle run one cycle at a time (months, with no estimate). Each now either is refused for a physical reason
+// (exit 2) or completes with warnings, on stderr and in summary.json, that say what cannot be trusted.
+#include <set>
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include "program.hpp"
+
+using namespace fretwear::test;
+
+namespace {
+
+// Runs the scene; the warning codes summary.json lists, each also printed on stderr.
+std::set<std::string> warning_codes(const std::string& scene) {
+  Scratch scratch{"nonsense"};
+  write_file(scratch.path / "s.json", scene);
+  const Outcome o = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(o.all());
+  REQUIRE(o.status == 0);
+  const auto summary = nlohmann::json::parse(read_file(scratch.path / "output" / "s" / "summary.json"));
+  std::set<std::string> codes;
+  for (const auto& w : summary.at("warnings")) {
+    codes.insert(w.at("code").get<std::string>());
+    CHECK(o.err.find("warning: " + w.at("code").get<std::string>() + ": " + w.at("message").get<std::string>()) !=
+          std::string::npos);
+  }
+  return codes;
+}
+
+const std::string kMaterials = R"("name": "s", "materials": {"both": {"E": 2e11, "nu": 0.3}})";
+
+}  // namespace
+
+TEST_CASE("a contact over two cells of a given window warns: under-resolved, and the closed form missed") {
+  const auto codes = warning_codes("{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
+    "load": {"P": 1e5}, "grid": {"cells": 256, "window": [-0.1, 0.1]}})");
+  CHECK(codes.count("contact_under_resolved") == 1);
+  CHECK(codes.count("closed_form_missed") == 1);
+}
+
+TEST_CASE("a resolved contact has no warning") {
+  CHECK(warning_codes("{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
+    "load": {"P": 1e5}, "grid": {"cells": 256}})").empty());
+}
+
+TEST_CASE("a radius so small that the contact strain passes linear elasticity is refused, naming load.P") {
+  Scratch scratch{"radius"};
+  for (const char* R : {"1e-9", "1e-7"}) {
+    write_file(scratch.path / "s.json", "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": )" + R +
+                                            R"(}, "load": {"P": 1e5}, "grid": {"cells": 256}})");
+    const Outcome o = run_program(scratch.path, {"run", "s.json"});
+    CAPTURE(o.all());
+    CHECK(o.status == 2);
+    CHECK(o.err.find("load.P: the mean contact pressure") != std::string::npos);
+    CHECK(snapshot(scratch.path).size() == 1);
+  }
+}
+
+TEST_CASE("a crack a metre long, or a metre outside the window, warns") {
+  const std::string base = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
+    "load": {"P": 1e5}, "grid": {"cells": 256}, "effects": {"crack": )";
+  CHECK(warning_codes(base + R"({"at": "trailing_edge", "lengths": [1e-5, 1.0]}}})") ==
+        std::set<std::string>{"crack_longer_than_window"});
+  CHECK(warning_codes(base + R"({"at": 1.0, "lengths": [1e-5]}}})") ==
+        std::set<std::string>{"crack_outside_window"});
+}
+
+TEST_CASE("a 1e12-cycle run one cycle at a time is refused with its estimate, naming the stepper and the cycles") {
+  Scratch scratch{"long"};
+  write_file(scratch.path / "s.json", "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
+    "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 256},
+    "effects": {"wear": {"k": 1e-15, "cycles": 1e12, "stepper": "cycle_by_cycle"}}})");
+  for (const char* command : {"validate", "run"}) {
+    const Outcome o = run_program(scratch.path, {command, "s.json"});
+    CAPTURE(o.all());
+    CHECK(o.status == 2);
+    CHECK(o.err.find("effects.wear.cycles: 1e+12 cycles with stepper \"cycle_by_cycle\" take about") !=
+          std::string::npos);
+    CHECK(o.err.find("use stepper \"implicit\"") != std::string::npos);
+    CHECK(snapshot(scratch.path).size() == 1);
+  }
+}
+
+TEST_CASE("a wear run estimated past an hour warns before it starts (validate says so too)") {
+  Scratch scratch{"hour"};
+  // Steps capped below the explicit stability limit: about 5 h on the machine this was written on, a factor of
+  // five from either bound (an hour, a day), which a slower machine or a sanitizer build stays within.
+  write_file(scratch.path / "s.json", "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
+    "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 256},
+    "effects": {"wear": {"k": 2.5e-14, "cycles": 1e12, "stepper": "explicit"}}})");
+  const Outcome o = run_program(scratch.path, {"validate", "s.json"});
+  CAPTURE(o.all());
+  CHECK(o.status == 0);
+  CHECK(o.err.find("warning: long_run: 1e+12 cycles with stepper \"explicit\" take about") != std::string::npos);
+  CHECK(o.out.find("its wear stage will take about") != std::string::npos);
+}

@@ -1,0 +1,54 @@
+// `validate` said valid and `run` then refused, leaving an empty output/ behind: a contact reaching the end of the
+// given window, a load whose load–size integral finds no contact half-width, a cycle the analogy route refuses.
+// validate now makes every check run makes before solving, and a refusal writes nothing.
+#include <doctest/doctest.h>
+
+#include "program.hpp"
+
+using namespace fretwear::test;
+
+namespace {
+
+// validate and run both exit 2 naming `key`, and neither writes anything.
+void both_refuse(const std::string& scene, const std::string& key) {
+  Scratch scratch{"agree"};
+  write_file(scratch.path / "s.json", scene);
+  for (const char* command : {"validate", "run"}) {
+    CAPTURE(command);
+    const Outcome o = run_program(scratch.path, {command, "s.json"});
+    CAPTURE(o.all());
+    CHECK(o.status == 2);
+    CHECK(o.all().find(key) != std::string::npos);
+    CHECK(snapshot(scratch.path).size() == 1);  // the scene alone: no output/
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a contact that reaches the given window's end: validate and run both refuse it") {
+  both_refuse(R"({"name": "s", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "load": {"P": 1e5},
+    "grid": {"cells": 256, "window": [-1e-4, 1e-4]}})",
+              "grid.window: the contact reaches the window's");
+}
+
+TEST_CASE("a load for which the default window finds no contact half-width: validate and run both refuse it") {
+  both_refuse(R"({"name": "s", "materials": {"both": {"E": 1e4, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 1000}, "load": {"P": 1e9}, "grid": {"cells": 256}})",
+              "grid.window: cannot be chosen for this profile and load");
+}
+
+TEST_CASE("the analogy route asked for a cycle in reverse slip: validate and run both refuse it") {
+  both_refuse(R"({"name": "s", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "load": {"P": 1e5, "Q": {"ratio": 0.2}, "bulk_stress": {"amplitude": 3e8}},
+    "grid": {"cells": 256}, "effects": {"tangential": {"route": "analogy"}}})",
+              "effects.tangential");
+}
+
+TEST_CASE("a cycle_by_cycle wear run past its stability limit: validate and run both refuse it") {
+  both_refuse(R"({"name": "s", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}},
+    "grid": {"cells": 4096}, "effects": {"wear": {"k": 1e-9, "cycles": 10, "stepper": "cycle_by_cycle"}}})",
+              "effects.wear.stepper");
+}

@@ -37,6 +37,9 @@ class ElasticPair {
   double kappa_specimen() const { return kappa2_; }
   double mu_pad() const { return mu1_; }      // shear modulus of the pad (Pa)
   double mu_specimen() const { return mu2_; } // shear modulus of the specimen (Pa)
+  // The surface strain ε_xx of the specimen under a bulk stress σ (Pa) along its surface: σ (κ₂ + 1) / (8 μ₂), in
+  // plane strain σ (1 − ν²)/E (PHYSICS.md, "Partial slip": the bulk stress enters as this strain).
+  double bulk_strain(double sigma) const { return sigma * (kappa2_ + 1.0) / (8.0 * mu2_); }
   const Material& pad() const { return pad_; }
   const Material& specimen() const { return specimen_; }
   PlaneState plane() const { return plane_; }

@@ -10,6 +10,7 @@
 // definite on the grid (the logarithmic capacity of an interval is a quarter of its length).
 #pragma once
 
+#include <complex>
 #include <vector>
 
 #include "contact/grid.hpp"
@@ -28,6 +29,10 @@ class HalfPlaneKernel {
   // u = K p by FFT.
   void apply(std::span<const double> p, std::span<double> u) const { fft_.apply(p, u); }
   const ToeplitzFFT& fft() const { return fft_; }
+  // The preconditioner of the solvers on this grid: the inverse of the circulant C that embeds K, as
+  // ToeplitzFFT::apply_spectrum takes it (its half spectrum over m = 2n). Empty when C is not positive definite,
+  // and a solver then runs without it.
+  const std::vector<std::complex<double>>& inverse_spectrum() const { return inverse_spectrum_; }
   const Grid& grid() const { return grid_; }
   double A() const { return A_; }
 
@@ -36,6 +41,7 @@ class HalfPlaneKernel {
   double A_, L_;
   std::vector<double> column_;
   ToeplitzFFT fft_;
+  std::vector<std::complex<double>> inverse_spectrum_;
 };
 
 }  // namespace fretwear

@@ -38,20 +38,8 @@ std::string IncrementalSlipOptions::validate() const {
 IncrementalSlipSolver::IncrementalSlipSolver(const HalfPlaneKernel& kernel, IncrementalSlipOptions options)
     : kernel_(kernel), options_(options) {
   if (auto msg = options_.validate(); !msg.empty()) throw InputError("incremental slip options: " + msg);
-  if (options_.preconditioner == NormalSolverOptions::Preconditioner::symbol) {
-    // As NormalSolver: spectrum() is C's half spectrum over m = 2n; apply_spectrum wants C⁻¹'s over m.
-    const auto spec = kernel_.fft().spectrum();
-    const double m = 2.0 * kernel_.grid().n;
-    inverse_spectrum_.resize(spec.size());
-    for (std::size_t k = 0; k < spec.size(); ++k) {
-      const double lambda = spec[k].real() * m;
-      if (!(lambda > 0.0)) {  // C not positive definite: solve without the preconditioner
-        inverse_spectrum_.clear();
-        break;
-      }
-      inverse_spectrum_[k] = 1.0 / (lambda * m);
-    }
-  }
+  if (options_.preconditioner == NormalSolverOptions::Preconditioner::symbol)
+    preconditioned_ = !kernel_.inverse_spectrum().empty();
 }
 
 namespace {
@@ -124,7 +112,7 @@ SolveSummary IncrementalSlipSolver::solve_increment(std::span<const double> p, d
 SolveSummary IncrementalSlipSolver::solve_bounded(std::span<const double> lo, std::span<const double> hi,
                                                   const SlipIncrement& inc, std::span<const double> u_prev,
                                                   IncrementState& state) const {
-  if (inverse_spectrum_.empty()) return iterate(lo, hi, inc, u_prev, state, false);
+  if (!preconditioned_) return iterate(lo, hi, inc, u_prev, state, false);
   const SolveSummary first = iterate(lo, hi, inc, u_prev, state, true);
   if (first.converged() || first.termination == Termination::no_admissible_cell) return first;
   // As in NormalSolver: plain constrained CG, warm-started from where the preconditioned run stalled.
@@ -174,7 +162,7 @@ SolveSummary IncrementalSlipSolver::iterate(std::span<const double> lo, std::spa
   }
   bool u_exact = true;
 
-  const bool preconditioned = use_preconditioner && !inverse_spectrum_.empty();
+  const bool preconditioned = use_preconditioner && preconditioned_;
   constexpr int kStallIterations = 200;  // a preconditioned run that has not halved its residual for this long
   double best_residual = std::numeric_limits<double>::infinity();
   int best_iteration = 0;
@@ -251,7 +239,7 @@ SolveSummary IncrementalSlipSolver::iterate(std::span<const double> lo, std::spa
     const double g_mean = g_sum / n_work;
     for (int i = 0; i < n; ++i) g[i] = work[i] ? g[i] - g_mean : 0.0;
     if (preconditioned) {
-      kernel_.fft().apply_spectrum(inverse_spectrum_, g, z);
+      kernel_.fft().apply_spectrum(kernel_.inverse_spectrum(), g, z);
       double z_sum = 0.0;
       for (int i = 0; i < n; ++i)
         if (work[i]) z_sum += z[i];

@@ -185,7 +185,7 @@ class IncrementalSlipSolver {
                        std::span<const double> u_prev, IncrementState& state, bool use_preconditioner) const;
   const HalfPlaneKernel& kernel_;
   IncrementalSlipOptions options_;
-  std::vector<std::complex<double>> inverse_spectrum_;  // C⁻¹ on the kernel's circulant, when preconditioned
+  bool preconditioned_ = false;  // the options ask for the kernel's inverse spectrum, and C is positive definite
 };
 
 }  // namespace fretwear

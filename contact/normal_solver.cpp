@@ -47,20 +47,8 @@ std::string SolveSummary::brief() const {
 NormalSolver::NormalSolver(const HalfPlaneKernel& kernel, NormalSolverOptions options)
     : kernel_(kernel), options_(options) {
   if (auto msg = options_.validate(); !msg.empty()) throw InputError("normal solver options: " + msg);
-  if (options_.preconditioner == NormalSolverOptions::Preconditioner::symbol) {
-    // spectrum() is C's half spectrum divided by m = 2n; apply_spectrum wants C⁻¹'s divided by m likewise.
-    const auto spec = kernel_.fft().spectrum();
-    const double m = 2.0 * kernel_.grid().n;
-    inverse_spectrum_.resize(spec.size());
-    for (std::size_t k = 0; k < spec.size(); ++k) {
-      const double lambda = spec[k].real() * m;  // C is symmetric: its spectrum is real
-      inverse_spectrum_[k] = 1.0 / (lambda * m);
-      if (!(lambda > 0.0)) {  // C not positive definite: the preconditioner would not be; solve without it
-        inverse_spectrum_.clear();
-        break;
-      }
-    }
-  }
+  if (options_.preconditioner == NormalSolverOptions::Preconditioner::symbol)
+    preconditioned_ = !kernel_.inverse_spectrum().empty();
 }
 
 namespace {
@@ -80,7 +68,7 @@ SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactSt
 
 SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactState& state,
                                  std::span<const double> shift) const {
-  if (inverse_spectrum_.empty()) return iterate(g0, P, state, shift, false);
+  if (!preconditioned_) return iterate(g0, P, state, shift, false);
   const SolveSummary first = iterate(g0, P, state, shift, true);
   if (first.converged() || first.termination == Termination::no_admissible_cell) return first;
   // The preconditioned iteration can stall where long stretches sit at zero gap and zero pressure (a worn
@@ -141,13 +129,13 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
   // With a shift, a block preconditioner: the symbol (K's circulant inverse) on the cells where K dominates, Jacobi
   // 1/(K_00 + shift_i) where the shift does. A circulant shifted by the mean shift fits neither block and stalled
   // (20 000 iterations on the Hertz wear run).
-  const bool preconditioned = use_preconditioner && !inverse_spectrum_.empty();
+  const bool preconditioned = use_preconditioner && preconditioned_;
   // A preconditioned run that has not halved its best residual for this many iterations has stalled.
   constexpr int kStallIterations = 200;
   double best_residual = std::numeric_limits<double>::infinity();
   int best_iteration = 0;
   const double k00 = kernel_.column()[0];
-  const auto& inverse = inverse_spectrum_;
+  const auto& inverse = kernel_.inverse_spectrum();
   // A sparse correction of s columns costs s n; a product about as much as 2 log2(2n) columns (BM_ToeplitzProduct).
   const int max_columns = std::max(4, 2 * int(std::bit_width(unsigned(2 * n))));
   const std::span<const double> column = kernel_.column();

@@ -109,7 +109,7 @@ class NormalSolver {
                        bool use_preconditioner) const;
   const HalfPlaneKernel& kernel_;
   NormalSolverOptions options_;
-  std::vector<std::complex<double>> inverse_spectrum_;  // C⁻¹ on the kernel's circulant, when preconditioned
+  bool preconditioned_ = false;  // the options ask for the kernel's inverse spectrum, and C is positive definite
 };
 
 }  // namespace fretwear

@@ -194,11 +194,10 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   stage.Q_max = scene.Q_max();
   stage.bulk_stress = scene.bulk_stress;
   const ElasticPair& pair = model.pair;
-  const double bulk_strain = scene.bulk_stress * (pair.kappa_specimen() + 1.0) / (8.0 * pair.mu_specimen());
+  const double bulk_strain = pair.bulk_strain(scene.bulk_stress);
   const bool displacement = scene.control == LoadControl::displacement;
   CyclicLoad load{scene.P, stage.Q_max, stage.f, bulk_strain, displacement ? *scene.delta : 0.0};
-  const double strain_per_stress = (pair.kappa_specimen() + 1.0) / (8.0 * pair.mu_specimen());
-  for (const auto& pt : scene.history) load.history.push_back({pt[0], pt[1], pt[2], pt[3] * strain_per_stress});
+  for (const auto& pt : scene.history) load.history.push_back({pt[0], pt[1], pt[2], pair.bulk_strain(pt[3])});
   const bool history = !load.history.empty();
   const TangentialRoute route = scene.tangential->route;
   // The datum: reference points 10 contact half-widths (or grid.reference_depth) below the contact's centre.

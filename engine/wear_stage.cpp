@@ -49,9 +49,7 @@ bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model,
 AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model)
     : scene_(scene), model_(model), solver_(*model.kernel, worn_options()), implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
   const double f = *scene.friction;
-  const double bulk_strain =
-      scene.bulk_stress * (model.pair.kappa_specimen() + 1.0) / (8.0 * model.pair.mu_specimen());
-  tilt_ = bulk_strain / f;
+  tilt_ = model.pair.bulk_strain(scene.bulk_stress) / f;
   corrective_load_ = scene.P - scene.Q_max() / f;
   if (!(corrective_load_ > 0.0))
     throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
@@ -116,8 +114,7 @@ IncrementalSlipOptions incremental_options(const Scene& scene) {
 }
 
 CyclicLoad incremental_load(const Scene& scene, const Model& model) {
-  const double strain =
-      scene.bulk_stress * (model.pair.kappa_specimen() + 1.0) / (8.0 * model.pair.mu_specimen());
+  const double strain = model.pair.bulk_strain(scene.bulk_stress);
   const bool displacement = scene.control == LoadControl::displacement;
   return {scene.P, displacement ? 0.0 : scene.Q_max(), *scene.friction, strain, displacement ? *scene.delta : 0.0};
 }

@@ -2,7 +2,7 @@
 
 #include <cassert>
 
-#include "contact/error.hpp"
+#include "common/error.hpp"
 
 namespace fretwear {
 

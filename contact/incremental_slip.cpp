@@ -12,7 +12,7 @@
 
 #include "contact/contact_zones.hpp"
 #include "contact/coupling_kernel.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 
 namespace fretwear {
 

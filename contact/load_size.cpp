@@ -8,7 +8,7 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/roots.hpp>
 
-#include "contact/error.hpp"
+#include "common/error.hpp"
 
 namespace fretwear {
 

@@ -7,7 +7,7 @@
 
 #include <boost/math/tools/minima.hpp>
 
-#include "contact/error.hpp"
+#include "common/error.hpp"
 
 namespace fretwear {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "contact/error.hpp"
+#include "common/error.hpp"
 
 namespace fretwear {
 

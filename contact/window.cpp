@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "contact/contact_zones.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "contact/half_plane_kernel.hpp"
 #include "contact/load_size.hpp"
 #include "contact/normal_solver.hpp"

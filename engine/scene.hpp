@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/elastic_pair.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "contact/profile.hpp"
 #include "engine/crack_stage.hpp"
 

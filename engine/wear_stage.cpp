@@ -20,7 +20,7 @@
 #include <unistd.h>
 
 #include "contact/contact_zones.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "contact/half_plane_kernel.hpp"
 #include "engine/deferred_signals.hpp"
 #include "engine/simulation.hpp"

@@ -43,13 +43,14 @@
 #include <boost/numeric/odeint/stepper/stepper_categories.hpp>
 #include <boost/numeric/odeint/util/unwrap_reference.hpp>
 
+#include "common/error.hpp"
 #include "wear/contact_response.hpp"
 
 namespace fretwear::wear {
 
 // A contact-implicit solve that did not converge even for a jump of one cycle.
-struct ImplicitSolveFailure : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct ImplicitSolveFailure : ConvergenceError {
+  using ConvergenceError::ConvergenceError;
 };
 
 struct ImplicitStepperStats {

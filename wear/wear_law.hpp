@@ -13,7 +13,7 @@ namespace fretwear::wear {
 
 enum class Law { archard, energy };
 std::string to_string(Law law);
-// Throws std::invalid_argument listing the accepted words.
+// Throws InputError listing the accepted words.
 Law law_from_string(std::string_view word);
 
 struct WearLaw {

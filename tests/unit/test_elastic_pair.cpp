@@ -4,7 +4,7 @@
 #include "support.hpp"
 
 #include "contact/elastic_pair.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 
 using namespace fretwear;
 

@@ -7,7 +7,7 @@
 
 #include <doctest/doctest.h>
 
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "contact/profile.hpp"
 
 using namespace fretwear;

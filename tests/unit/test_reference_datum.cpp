@@ -12,7 +12,7 @@
 #include "support.hpp"
 
 #include "contact/elastic_pair.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "contact/grid.hpp"
 #include "contact/half_plane_kernel.hpp"
 #include "contact/reference_datum.hpp"

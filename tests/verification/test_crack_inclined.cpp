@@ -11,7 +11,7 @@
 
 #include "contact/closed_form.hpp"
 #include "contact/crack_solver.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 
 using namespace fretwear;
 using fretwear::test::rel;

@@ -9,7 +9,7 @@
 #include <doctest/doctest.h>
 
 #include "contact/closed_form.hpp"
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "contact/normal_solver.hpp"
 #include "engine/simulation.hpp"
 #include "scenes.hpp"

@@ -20,7 +20,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
 #include "scenes.hpp"

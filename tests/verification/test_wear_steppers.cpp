@@ -14,7 +14,7 @@
 
 #include <doctest/doctest.h>
 
-#include "contact/error.hpp"
+#include "common/error.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
 #include "scenes.hpp"

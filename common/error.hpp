@@ -1,4 +1,6 @@
-// Errors a user can cause (a scene, a file, a solve that does not converge). Programming mistakes are assert()s.
+// The one root of the errors a user can cause (a scene, a file, a solve that does not converge), for contact/,
+// wear/ and engine/ alike: a header of its own, so that wear/ throws them without knowing contact/. Programming
+// mistakes are assert()s.
 #pragma once
 
 #include <stdexcept>

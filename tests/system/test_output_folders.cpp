@@ -291,7 +291,8 @@ TEST_CASE("run, convergence, sweep, run: each keeps the others' results") {
   std::vector<std::string> present;
   int step = 0;
   for (const auto& [command, result] : steps) {
-    INFO("step " << ++step << ": " << command);
+    const int n = ++step;
+    INFO("step " << n << ": " << command);
     const Outcome r = s.fretwear(command_line(command, "s.json"));
     CHECK_MESSAGE(r.exited(kDone), command << ": " << r.describe());
     present.push_back(result);

@@ -1,0 +1,357 @@
+// Output folders (SCENES.md, Additions: "fretwear writes only into folders it made"). output.dir is refused with
+// exit 2 and a message naming it, before anything is computed and with nothing of the user's touched, when it is an
+// existing file, a folder that holds anything and has no .fretwear marker, the scene's own folder or one that holds
+// the scene, ".", "..", a path ending in "/..", "/", or any ancestor of the working folder. A missing folder, an
+// empty one or one fretwear made is accepted, and the folder made holds the marker. Each command owns its part:
+// `run` output.dir, `convergence` <output.dir>/convergence/, `sweep` <output.dir>/sweep/; none removes another's.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "system/program.hpp"
+
+using namespace fretwear::system_test;
+
+namespace {
+
+// Where a case puts the scene (relative to the working folder) and what it names as output.dir (nothing: the
+// default output/<name>); `plots_only` gives "output": {"plots": false} and no dir.
+struct Setup {
+  std::string scene = "s.json";
+  std::optional<std::string> dir = std::nullopt;
+  bool plots_only = false;
+};
+
+// A case: what it prepares in the tree (folders, files, earlier runs) and the command it runs.
+struct FolderCase {
+  std::string label;
+  std::function<Setup(const Scratch&)> prepare;
+  std::string command = "run";
+};
+
+std::string scene_text(const Setup& setup, const std::string& name = "h") {
+  json scene = base_scene();
+  scene["name"] = name;
+  if (setup.dir) scene["output"] = {{"dir", *setup.dir}};
+  if (setup.plots_only) scene["output"] = {{"plots", false}};
+  return scene.dump();
+}
+
+// The command line of each command, cheap: a convergence study over two grids, a sweep of two runs.
+std::vector<std::string> command_line(const std::string& command, const std::string& scene) {
+  if (command == "convergence") return {"convergence", scene, "--from", "64", "--to", "128", "-q"};
+  if (command == "sweep") return {"sweep", scene, "--vary", "load.P=5e4,1e5", "--jobs", "1", "-q"};
+  return {command, scene, "-q"};
+}
+
+// What the command leaves in the folder it was given, relative to it.
+std::string result_of(const std::string& command) {
+  if (command == "convergence") return "convergence/convergence.csv";
+  if (command == "sweep") return "sweep/sweep.csv";
+  return "summary.json";
+}
+
+// Runs a scene beforehand, as a case's preparation: it must complete.
+void run_before(const Scratch& s, const std::string& scene, const std::string& text) {
+  s.write(scene, text);
+  const Outcome r = s.fretwear({"run", scene, "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), "the preparing run: " << r.describe());
+  std::filesystem::remove(s.work / scene);
+}
+
+void link(const Scratch& s, const std::string& target, const std::string& name) {
+  std::filesystem::create_directory_symlink(target, s.work / name);
+}
+
+// Refused: exit 2 naming output.dir, the tree as it was (nothing new, nothing changed), and `validate` refusing
+// it as well (validate 0 must mean run does not exit 2).
+void check_refused(const FolderCase& c) {
+  INFO("case: " << c.label << " (" << c.command << ")");
+  Scratch s;
+  const Setup setup = c.prepare(s);
+  s.write(setup.scene, scene_text(setup));
+  const Snapshot before = s.snapshot();
+  const Outcome v = s.fretwear({"validate", setup.scene, "-q"});
+  const Outcome r = s.fretwear(command_line(c.command, setup.scene));
+  const Snapshot after = s.snapshot();
+  CHECK_MESSAGE(!r.crashed(), r.describe());
+  CHECK_MESSAGE(r.exited(kInvalid), "want exit 2, got " << r.describe());
+  CHECK_MESSAGE(r.err.find("output.dir") != std::string::npos, "the message should name output.dir: " << r.describe());
+  CHECK_MESSAGE(changes(before, after).empty(), "the tree changed: " << join(changes(before, after)));
+  CHECK_MESSAGE(!v.crashed(), "validate: " << v.describe());
+  CHECK_MESSAGE(!(v.exited(kDone) && r.exited(kInvalid)), "validate accepted what run refused: " << v.describe());
+}
+
+// Accepted: exit 0, the results and the marker in the folder, everything of the user's outside it as it was, no
+// staging folder or temporary file left. `folder` is where the results land, relative to the working folder.
+void check_accepted(const FolderCase& c, const std::string& folder) {
+  INFO("case: " << c.label << " (" << c.command << ")");
+  Scratch s;
+  const Setup setup = c.prepare(s);
+  s.write(setup.scene, scene_text(setup));
+  const Snapshot before = s.snapshot();
+  const Outcome v = s.fretwear({"validate", setup.scene, "-q"});
+  const Outcome r = s.fretwear(command_line(c.command, setup.scene));
+  const Snapshot after = s.snapshot();
+  CHECK_MESSAGE(!r.crashed(), r.describe());
+  CHECK_MESSAGE(r.exited(kDone), "want exit 0, got " << r.describe());
+  CHECK_MESSAGE(v.exited(kDone), "validate: " << v.describe());
+  const std::filesystem::path out = s.work / folder;
+  CHECK_MESSAGE(std::filesystem::exists(out / result_of(c.command)), (out / result_of(c.command)).string());
+  CHECK_MESSAGE(std::filesystem::exists(out / ".fretwear"), "no marker in " << out.string());
+  const std::string exempt = (s.work / folder).lexically_normal().lexically_relative(s.tree).generic_string();
+  std::vector<std::string> touched;
+  for (const auto& line : changes(before, after, {exempt}))
+    if (line.rfind("new ", 0) != 0) touched.push_back(line);
+  CHECK_MESSAGE(touched.empty(), "the user's files were touched: " << join(touched));
+  CHECK_MESSAGE(leftovers(before, after).empty(), "left behind: " << join(leftovers(before, after)));
+}
+
+// The refusals every command shares.
+std::vector<FolderCase> refusals_of_every_command(const std::string& command) {
+  return {
+      {"an existing file", [](const Scratch&) { return Setup{"s.json", "notes.txt"}; }, command},
+      {"a folder of the user's holding a file", [](const Scratch&) { return Setup{"s.json", "keep"}; }, command},
+      {"the default output/<name> holding the user's files",
+       [](const Scratch& s) {
+         s.write("output/h/notes.txt", "the user's, not fretwear's\n");
+         return Setup{};
+       },
+       command},
+      {"\".\"", [](const Scratch&) { return Setup{"s.json", "."}; }, command},
+      {"\"..\"", [](const Scratch&) { return Setup{"s.json", ".."}; }, command},
+      {"the parent of the working folder by its absolute path",
+       [](const Scratch& s) { return Setup{"s.json", s.home.string()}; }, command},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("output.dir refused for run: files, the user's folders, the scene's folder, . and ..") {
+  const std::vector<FolderCase> cases = {
+      {"an existing file", [](const Scratch&) { return Setup{"s.json", "notes.txt"}; }},
+      {"an existing file by its absolute path",
+       [](const Scratch& s) { return Setup{"s.json", (s.work / "notes.txt").string()}; }},
+      {"a folder under an existing file", [](const Scratch&) { return Setup{"s.json", "notes.txt/results"}; }},
+      {"a folder of the user's holding a file", [](const Scratch&) { return Setup{"s.json", "keep"}; }},
+      {"the same folder with a trailing slash", [](const Scratch&) { return Setup{"s.json", "keep/"}; }},
+      {"the same folder through ..", [](const Scratch&) { return Setup{"s.json", "keep/../keep"}; }},
+      {"a link to the same folder",
+       [](const Scratch& s) {
+         link(s, "keep", "keep-link");
+         return Setup{"s.json", "keep-link"};
+       }},
+      {"a folder holding only an empty folder",
+       [](const Scratch& s) {
+         std::filesystem::create_directories(s.work / "holder" / "empty");
+         return Setup{"s.json", "holder"};
+       }},
+      {"a folder holding only a hidden file",
+       [](const Scratch& s) {
+         s.write("hidden/.profile", "export PATH\n");
+         return Setup{"s.json", "hidden"};
+       }},
+      {"the default output/<name> holding the user's files",
+       [](const Scratch& s) {
+         s.write("output/h/notes.txt", "the user's, not fretwear's\n");
+         return Setup{};
+       }},
+      {"the scene's own folder", [](const Scratch&) { return Setup{"scenes/s.json", "scenes"}; }},
+      {"the scene's own folder by its absolute path",
+       [](const Scratch& s) { return Setup{"scenes/s.json", (s.work / "scenes").string()}; }},
+      {"the scene's own folder, made by fretwear",
+       [](const Scratch& s) {
+         run_before(s, "first.json", scene_text(Setup{"first.json", "made"}));
+         return Setup{"made/s.json", "made"};
+       }},
+      {"a folder made by fretwear holding the scene deeper down",
+       [](const Scratch& s) {
+         run_before(s, "first.json", scene_text(Setup{"first.json", "made"}));
+         return Setup{"made/sub/s.json", "made"};
+       }},
+      {"a folder of the user's holding the scene's folder",
+       [](const Scratch&) { return Setup{"scenes/deep/s.json", "scenes"}; }},
+      {"a folder under /proc", [](const Scratch&) { return Setup{"s.json", "/proc/fretwear"}; }},
+  };
+  for (const auto& c : cases) check_refused(c);
+}
+
+TEST_CASE("output.dir refused for run: the working folder and its ancestors however spelt") {
+  // Every path here resolves inside the scratch tree: a program that wrongly replaces it harms only the tree.
+  const std::vector<FolderCase> cases = {
+      {"\".\"", [](const Scratch&) { return Setup{"s.json", "."}; }},
+      {"\"./\"", [](const Scratch&) { return Setup{"s.json", "./"}; }},
+      {"\"..\"", [](const Scratch&) { return Setup{"s.json", ".."}; }},
+      {"\"../..\" (the top of the tree)", [](const Scratch&) { return Setup{"s.json", "../.."}; }},
+      {"a missing folder followed by /..", [](const Scratch&) { return Setup{"s.json", "missing/.."}; }},
+      {"a folder of the user's followed by /..", [](const Scratch&) { return Setup{"s.json", "keep/.."}; }},
+      {"a new folder path followed by /../..", [](const Scratch&) { return Setup{"s.json", "a/b/../.."}; }},
+      {"the working folder by its absolute path", [](const Scratch& s) { return Setup{"s.json", s.work.string()}; }},
+      {"its parent by its absolute path", [](const Scratch& s) { return Setup{"s.json", s.home.string()}; }},
+      {"the top of the tree by its absolute path", [](const Scratch& s) { return Setup{"s.json", s.tree.string()}; }},
+      {"the parent by its absolute path and /.",
+       [](const Scratch& s) { return Setup{"s.json", s.home.string() + "/."}; }},
+      {"the parent by its absolute path and a trailing slash",
+       [](const Scratch& s) { return Setup{"s.json", s.home.string() + "/"}; }},
+      {"a link to the working folder",
+       [](const Scratch& s) {
+         link(s, ".", "here");
+         return Setup{"s.json", "here"};
+       }},
+      {"a link to the parent",
+       [](const Scratch& s) {
+         link(s, "..", "up");
+         return Setup{"s.json", "up"};
+       }},
+  };
+  for (const auto& c : cases) check_refused(c);
+}
+
+TEST_CASE("output.dir refused for convergence and sweep as for run") {
+  for (const char* command : {"convergence", "sweep"})
+    for (const auto& c : refusals_of_every_command(command)) check_refused(c);
+}
+
+TEST_CASE("output.dir accepted: a missing folder, an empty one, one fretwear made") {
+  struct Accepted {
+    FolderCase c;
+    std::string folder;  // where the results land, relative to the working folder
+  };
+  const std::vector<Accepted> cases = {
+      {{"a missing folder", [](const Scratch&) { return Setup{"s.json", "fresh"}; }}, "fresh"},
+      {{"a missing folder three levels down", [](const Scratch&) { return Setup{"s.json", "a/b/c"}; }}, "a/b/c"},
+      {{"a missing folder with a trailing slash", [](const Scratch&) { return Setup{"s.json", "fresh/"}; }}, "fresh"},
+      {{"a missing folder by its absolute path",
+        [](const Scratch& s) { return Setup{"s.json", (s.work / "fresh").string()}; }},
+       "fresh"},
+      {{"a missing folder inside a folder of the user's",
+        [](const Scratch&) { return Setup{"s.json", "keep/results"}; }},
+       "keep/results"},
+      {{"a missing folder inside the scene's folder",
+        [](const Scratch&) { return Setup{"scenes/s.json", "scenes/out"}; }},
+       "scenes/out"},
+      {{"an empty folder of the user's",
+        [](const Scratch& s) {
+          std::filesystem::create_directory(s.work / "empty");
+          return Setup{"s.json", "empty"};
+        }},
+       "empty"},
+      {{"the default output/<name>", [](const Scratch&) { return Setup{}; }}, "output/h"},
+      {{"the default when only output.plots is given", [](const Scratch&) { return Setup{"s.json", {}, true}; }},
+       "output/h"},
+      {{"the default beside the user's files in output/",
+        [](const Scratch& s) {
+          s.write("output/README.md", "the user's notes on the outputs\n");
+          return Setup{};
+        }},
+       "output/h"},
+      {{"the default beside a folder of the user's named like a staging folder",
+        [](const Scratch& s) {
+          s.write("output/h.partial-4194303/inner.txt", "the user's, whatever its name\n");
+          return Setup{};
+        }},
+       "output/h"},
+      {{"a folder fretwear made for another scene",
+        [](const Scratch& s) {
+          run_before(s, "other.json", scene_text(Setup{"other.json", "shared"}, "other"));
+          return Setup{"s.json", "shared"};
+        }},
+       "shared"},
+      {{"its own folder from the run before",
+        [](const Scratch& s) {
+          run_before(s, "s.json", scene_text(Setup{}));
+          return Setup{};
+        }},
+       "output/h"},
+  };
+  for (const auto& a : cases) check_accepted(a.c, a.folder);
+  for (const char* command : {"convergence", "sweep"}) {
+    check_accepted({"the default output/<name>", [](const Scratch&) { return Setup{}; }, command}, "output/h");
+    check_accepted({"a missing folder", [](const Scratch&) { return Setup{"s.json", "fresh"}; }, command}, "fresh");
+    check_accepted({"an empty folder of the user's",
+                    [](const Scratch& s) {
+                      std::filesystem::create_directory(s.work / "empty");
+                      return Setup{"s.json", "empty"};
+                    },
+                    command},
+                   "empty");
+  }
+}
+
+TEST_CASE("run, convergence, sweep, run: each keeps the others' results") {
+  Scratch s;
+  s.write("s.json", base_scene().dump());
+  const std::filesystem::path out = s.work / "output" / "h";
+  const std::vector<std::pair<std::string, std::string>> steps = {
+      {"run", "summary.json"}, {"convergence", "convergence/convergence.csv"}, {"sweep", "sweep/sweep.csv"},
+      {"run", "summary.json"}};
+  std::vector<std::string> present;
+  int step = 0;
+  for (const auto& [command, result] : steps) {
+    const int n = ++step;
+    INFO("step " << n << ": " << command);
+    const Outcome r = s.fretwear(command_line(command, "s.json"));
+    CHECK_MESSAGE(r.exited(kDone), command << ": " << r.describe());
+    present.push_back(result);
+    for (const auto& file : present) CHECK_MESSAGE(std::filesystem::exists(out / file), file << " is gone");
+    CHECK(std::filesystem::exists(out / ".fretwear"));
+  }
+}
+
+TEST_CASE("a rerun of run replaces its own results") {
+  Scratch s;
+  json scene = base_scene();
+  s.write("s.json", scene.dump());
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}).exited(kDone));
+  scene["load"]["P"] = 2e5;
+  s.write("s.json", scene.dump());
+  const Snapshot before = s.snapshot();
+  const Outcome r = s.fretwear({"run", "s.json", "-q"});
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+  const json summary = json::parse(read_file(s.work / "output" / "h" / "summary.json"), nullptr, false);
+  REQUIRE(summary.is_object());
+  CHECK(summary["contact"]["load"].get<double>() == doctest::Approx(2e5).epsilon(1e-6));
+  CHECK(leftovers(before, s.snapshot()).empty());
+}
+
+TEST_CASE("output.dir \"/\" is refused before anything is computed") {
+  // A program that does not refuse "/" would replace it: as root, everything. So the case runs only where such a
+  // program is held before it writes anything: a wear run told to pause ten minutes at each step boundary
+  // (FRETWEAR_STEP_PAUSE_MS) is killed after 5 s. A probe shows first that this program does pause so: the same
+  // scene into a folder of the tree is still running after 5 s. The correct program refuses "/" at once.
+  const std::vector<std::pair<std::string, std::string>> pause = {{"FRETWEAR_STEP_PAUSE_MS", "600000"}};
+  constexpr double kHeld = 5.0;  // s
+  Scratch s;
+  json scene = wear_scene();
+  scene["output"] = {{"dir", "probe"}};
+  s.write("probe.json", scene.dump());
+  const Outcome probe = s.fretwear({"run", "probe.json", "-q"}, pause, kHeld);
+  REQUIRE_MESSAGE(probe.timed_out, "the probe did not stay paused (" << probe.describe()
+                                                                       << "): \"/\" cannot be tried safely");
+
+  scene["output"] = {{"dir", "/"}};
+  s.write("root.json", scene.dump());
+  std::set<std::string> top_before;
+  for (const auto& e : std::filesystem::directory_iterator("/")) top_before.insert(e.path().string());
+  const Snapshot before = s.snapshot();
+  Child child = s.start({"run", "root.json", "-q"}, pause, kHeld);
+  const pid_t pid = child.pid();
+  const Outcome r = child.wait();
+  // What a program that did not refuse made at the top before it was held: its empty staging folder, a checkpoint.
+  std::vector<std::string> made;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/")) {
+    if (top_before.count(e.path().string())) continue;
+    made.push_back(e.path().string());
+    const std::string name = e.path().filename().string();
+    if (name == ".partial-" + std::to_string(pid) || name == ".checkpoint" || name.rfind(".checkpoint.tmp", 0) == 0)
+      std::filesystem::remove(e.path(), ec);  // a folder only if empty
+  }
+  CHECK_MESSAGE(r.exited(kInvalid), "want exit 2 at once, got " << r.describe());
+  CHECK_MESSAGE(r.err.find("output.dir") != std::string::npos, "the message should name output.dir: " << r.describe());
+  CHECK_MESSAGE(made.empty(), "made at the top of the file system: " << join(made));
+  CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "the tree changed: " << join(changes(before, s.snapshot())));
+}

@@ -307,15 +307,15 @@ int convergence(const std::string& path, int from, int to, bool quiet) {
   return 0;
 }
 
-// The subcommands; a first word that is none of them (nor an option) is named in the error.
+// The subcommands, and the options before them; a word before the subcommand that is neither is named in the error.
 const std::vector<std::string> kCommands{"run", "validate", "defaults", "convergence", "sweep"};
+const std::vector<std::string> kTopOptions{"-q", "--quiet", "-v", "--verbose", "--version", "-h", "--help"};
 
 std::optional<std::string> unknown_command(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
-    if (word.empty() || word[0] == '-') continue;
     if (std::find(kCommands.begin(), kCommands.end(), word) != kCommands.end()) return std::nullopt;
-    return word;
+    if (std::find(kTopOptions.begin(), kTopOptions.end(), word) == kTopOptions.end()) return word;
   }
   return std::nullopt;
 }
@@ -364,9 +364,9 @@ int main(int argc, char** argv) {
   }
 
   if (const auto word = unknown_command(argc, argv)) {
-    std::cerr << fmt::format("fretwear: \"{}\" is not a command; the commands are run, validate, defaults, "
+    std::cerr << fmt::format("fretwear: \"{}\" is not a {}; the commands are run, validate, defaults, "
                              "convergence and sweep (fretwear --help)\n",
-                             *word);
+                             *word, word->starts_with("-") ? "command or an option before one" : "command");
     return kExitInvalid;
   }
   try {
@@ -374,6 +374,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);  // prints help, the version, or the usage error
     return code == 0 ? 0 : kExitInvalid;
+  }
+  if (!std::isfinite(checkpoint_every)) {  // CLI::Range lets NaN through: it compares false both ways
+    std::cerr << "fretwear: --checkpoint-every: not a number; give seconds from 0 to 1e9\n";
+    return kExitInvalid;
   }
   try {
     if (*run_cmd) return run(scene_path, quiet, verbose, resume, checkpoint_every);

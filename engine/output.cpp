@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cerrno>
+#include <climits>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <csignal>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -48,6 +51,15 @@ void remove_ours(const fs::path& dir) {
   if (ours(dir)) fs::remove_all(dir, ec);
 }
 
+// 0 when a folder can be made in `dir`, else the errno that says why not. Permissions alone do not tell (root
+// passes access() on /proc, where mkdir fails): a probe folder is made and removed at once.
+int can_make_folder_in(const fs::path& dir) {
+  const fs::path probe = dir / fmt::format(".fretwear-probe-{}", ::getpid());
+  if (::mkdir(probe.c_str(), 0700) != 0) return errno == EEXIST ? 0 : errno;
+  ::rmdir(probe.c_str());
+  return 0;
+}
+
 // The problems with writing into `target` (absolute), the folder `what` names.
 void check_target(const fs::path& target, const std::string& what, const fs::path& scene_dir,
                   std::vector<std::string>& problems) {
@@ -65,8 +77,26 @@ void check_target(const fs::path& target, const std::string& what, const fs::pat
                                    what, target.string()));
     return;
   }
+  if (target.native().size() >= PATH_MAX) {
+    problems.push_back(fmt::format("{}: the path is {} characters long; the system takes at most {}", what,
+                                   target.native().size(), PATH_MAX - 1));
+    return;
+  }
   const auto status = fs::status(target, ec);
-  if (!fs::exists(status)) return;
+  if (!fs::exists(status)) {
+    // Made with its parents: the nearest folder that exists must take them.
+    fs::path above = target.parent_path();
+    while (!above.empty() && !fs::exists(above, ec) && above != above.root_path()) above = above.parent_path();
+    if (!fs::is_directory(above, ec))
+      problems.push_back(fmt::format("{}: \"{}\" lies under \"{}\", which is a file, not a folder; give a folder "
+                                     "path",
+                                     what, target.string(), above.string()));
+    else if (const int e = can_make_folder_in(above); e != 0)
+      problems.push_back(fmt::format("{}: cannot write into \"{}\" ({}), where \"{}\" would be made; give a "
+                                     "folder you can write to",
+                                     what, above.string(), std::strerror(e), target.string()));
+    return;
+  }
   if (!fs::is_directory(status)) {
     problems.push_back(fmt::format("{}: \"{}\" is an existing file, which fretwear would replace; give the path of "
                                    "a folder",
@@ -143,9 +173,15 @@ void OutputFolder::stage() const {
   remove_ours(staging_);
   fs::create_directories(staging_, ec);
   if (!ec) std::ofstream(staging_ / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
-  if (!ec && command_ != OutputCommand::run && !made_parents_.empty() &&
-      made_parents_.back() == fs::absolute(dir_).parent_path())
-    std::ofstream(made_parents_.back() / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
+  // A command's subfolder lives in the run's folder, which is fretwear's own from then on: marked when made here or
+  // found empty.
+  const fs::path run_folder = fs::absolute(dir_).parent_path();
+  if (!ec && command_ != OutputCommand::run && !ours(run_folder)) {
+    int entries = 0;
+    for (auto it = fs::directory_iterator(run_folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+      entries += it->path().filename() != staging_.filename();
+    if (entries == 0) std::ofstream(run_folder / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
+  }
   if (ec || ::access(staging_.c_str(), W_OK) != 0 || !ours(staging_)) {
     const std::string why = ec ? ec.message() : "permission denied";
     fs::remove_all(staging_, ec);

@@ -1,6 +1,7 @@
 // Ctrl-C during a wear run (main.cpp: 130 a wear run stopped by SIGINT, what was recorded written, a checkpoint
-// kept). A user who presses Ctrl-C twice because the first seemed to do nothing still gets exit 130 and no
-// temporary file, and `run --resume` then completes. FRETWEAR_STEP_PAUSE_MS slows each wear step so that the
+// kept). A second Ctrl-C ends the program at once (docs/SCENES.md, "Long runs"), unless the two arrive together
+// (then they are one) or the second while a checkpoint or the results are put in place (it waits for that): exit 130
+// or death by SIGINT, and in either case no temporary file, and `run --resume` then completes. FRETWEAR_STEP_PAUSE_MS slows each wear step so that the
 // signals land part way through the run.
 #include <chrono>
 #include <csignal>
@@ -23,6 +24,7 @@ const std::vector<std::pair<std::string, std::string>> kPause = {{"FRETWEAR_STEP
 constexpr auto kMidRun = std::chrono::milliseconds(700);
 
 void interrupt(int times) {
+  const bool first_only = times == 1;
   INFO("SIGINT sent " << times << " time(s)");
   Scratch s;
   s.write("w.json", wear_scene().dump());
@@ -35,7 +37,11 @@ void interrupt(int times) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   const Outcome r = child.wait();
-  CHECK_MESSAGE(r.exited(kInterrupted), "want exit 130, got " << r.describe());
+  if (first_only)
+    CHECK_MESSAGE(r.exited(kInterrupted), "want exit 130, got " << r.describe());
+  else
+    CHECK_MESSAGE((r.exited(kInterrupted) || (r.signal == SIGINT && !r.timed_out)),
+                  "want exit 130 or death by SIGINT, got " << r.describe());
   const Snapshot stopped = s.snapshot();
   CHECK_MESSAGE(leftovers(before, stopped).empty(), "left behind: " << join(leftovers(before, stopped)));
 
@@ -54,6 +60,6 @@ void interrupt(int times) {
 
 TEST_CASE("SIGINT once during a wear run: exit 130, and run --resume completes") { interrupt(1); }
 
-TEST_CASE("SIGINT twice in quick succession: exit 130, no temporary file, and run --resume completes") {
+TEST_CASE("SIGINT twice in quick succession: no temporary file, and run --resume completes") {
   interrupt(2);
 }

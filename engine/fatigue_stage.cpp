@@ -6,7 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/output.hpp"
+#include "engine/folder.hpp"
+#include "engine/plot.hpp"
 #include "engine/wear_stage.hpp"
 
 namespace fretwear {

@@ -16,7 +16,7 @@
 
 namespace fretwear {
 
-class OutputFolder;  // engine/output.hpp
+class OutputFolder;  // engine/folder.hpp
 
 // SWT on the stress map's points.
 struct SwtMap {

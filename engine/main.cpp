@@ -18,6 +18,7 @@
 
 #include "engine/convergence.hpp"
 #include "engine/deferred_signals.hpp"
+#include "engine/folder.hpp"
 #include "engine/output.hpp"
 #include "engine/preflight.hpp"
 #include "engine/scene.hpp"

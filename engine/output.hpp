@@ -1,72 +1,17 @@
-// Writing a command's results (docs/SCENES.md, "Output folders"). fretwear writes only into folders it made, each
-// marked by a file kMarker inside: output_dir_problems() refuses every other target before anything is computed.
-// Everything goes into a staging folder beside the target, made at the first write, which replaces the target only
-// when all of it is written: a failed or interrupted command leaves no half-written folder and no stray file.
+// Writing a run's results into its folder (engine/folder.hpp): summary.json, the resolved scene, each stage's
+// CSV fields and plots, and index.html showing them.
 #pragma once
-
-#include <filesystem>
-#include <string>
-#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "engine/folder.hpp"
+#include "engine/plot.hpp"
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"
 
 namespace fretwear {
 
-// The file that marks a folder as fretwear's own (its results, safe for fretwear to replace).
-inline constexpr const char* kOutputMarker = ".fretwear";
-
-// The commands that write results, each into its own folder: run into output.dir, convergence and sweep into their
-// subfolders of it (output_folder()), so that no command removes another's results.
-enum class OutputCommand { run, convergence, sweep };
-const char* subfolder(OutputCommand command);  // "" for run, "convergence", "sweep"
-std::filesystem::path output_folder(const Scene& scene, OutputCommand command);
-
-// Why `command` may not write its results for the scene read from scene_file (empty: it may). Refused: a path that
-// names `.` or `..`; the working folder or any folder above it; the scene file's folder or any folder above it; an
-// existing file; an existing folder, not empty, without kOutputMarker. Each problem names output.dir.
-std::vector<std::string> output_dir_problems(const Scene& scene, const std::filesystem::path& scene_file,
-                                             OutputCommand command);
-
-class OutputFolder {
- public:
-  // dir: the target of `command`, checked by output_dir_problems(). A commit of the run's folder carries over the
-  // convergence and sweep subfolders of the previous one; a command's subfolder whose parent (the run's folder) does
-  // not exist yet makes it, marked. Nothing is created before the first write.
-  explicit OutputFolder(std::filesystem::path dir, OutputCommand command = OutputCommand::run);
-  ~OutputFolder();
-  OutputFolder(const OutputFolder&) = delete;
-  OutputFolder& operator=(const OutputFolder&) = delete;
-
-  // `file` inside the staging folder (made, with its parents, on the first call); throws SceneError naming
-  // output.dir when it cannot be made.
-  std::filesystem::path path(const std::string& file) const;
-  void write(const std::string& file, const std::string& content) const;
-  void write_json(const std::string& file, const nlohmann::json& j) const;
-  // Replaces dir by the staging folder, carrying over the kept subfolders of the previous dir.
-  void commit();
-  const std::filesystem::path& dir() const { return dir_; }
-
- private:
-  void stage() const;
-  std::filesystem::path dir_, staging_;
-  OutputCommand command_;
-  mutable bool staged_ = false;
-  mutable std::vector<std::filesystem::path> made_parents_;  // folders made for the staging folder, deepest last
-  bool committed_ = false;
-};
-
 // summary.json, scene.resolved.json, contact.csv, the plots and index.html. Returns the summary written.
 nlohmann::json write_results(const Scene& scene, const RunResult& result, OutputFolder& out);
-
-// gnuplot commands that draw `plot` (a plot or splot command with its newline) into <stem>.svg and <stem>.png.
-std::string svg_and_png(const std::string& stem, const std::string& plot, int width = 1000, int height = 560);
-// The same into <stem>.png alone: for colour maps, whose SVG holds a polygon per grid point (8 MB for 161 × 81).
-std::string png_only(const std::string& stem, const std::string& plot, int width = 1000, int height = 560);
-
-// Runs gnuplot on `script` inside `dir`; false (and a note on stderr) when gnuplot is missing or fails.
-bool run_gnuplot(const std::filesystem::path& dir, const std::string& script_file);
 
 }  // namespace fretwear

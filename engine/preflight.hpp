@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "engine/output.hpp"
+#include "engine/folder.hpp"
 #include "engine/scene.hpp"
 #include "engine/warnings.hpp"
 

@@ -10,7 +10,9 @@
 #include <fmt/format.h>
 
 #include "engine/deferred_signals.hpp"
+#include "engine/folder.hpp"
 #include "engine/output.hpp"
+#include "engine/plot.hpp"
 #include "engine/preflight.hpp"
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"

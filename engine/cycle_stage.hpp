@@ -1,0 +1,36 @@
+// The cycle stage: one steady load cycle of partial slip (contact/tangential_solver.hpp, the analogy route, or
+// contact/incremental_slip.hpp, the incremental route), with the route that ran and why, and the displacement datum.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "contact/tangential_solver.hpp"
+#include "engine/crack_stage.hpp"
+#include "engine/normal_stage.hpp"
+#include "engine/scene.hpp"
+#include "engine/setup.hpp"
+
+namespace fretwear {
+
+// What the cycle stage computed, with the route that ran.
+struct CycleStage {
+  CycleResult result;
+  std::string route;  // "analogy"
+  double Q_max = 0.0, f = 0.0, bulk_stress = 0.0;
+  // The displacement datum (contact/reference_datum.hpp): reference points at depth reference_depth (m) below
+  // reference_x (m), the centre of the contact under P alone.
+  double reference_x = 0.0, reference_depth = 0.0;
+  // Dissimilar bodies (β ≠ 0): the pressure at the top and the bottom of the steady cycle (Pa per cell), which the
+  // shear changes; empty for similar bodies, whose pressure is the normal contact's at every instant.
+  std::vector<double> p_top, p_bottom;
+};
+
+// One steady load cycle. Throws UnsupportedError where the route the cycle needs is not built.
+CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal);
+
+// The loads at the top and the bottom of the cycle (just "loaded" without one): in phase, the bottom is the top
+// reversed; q_top empty or null (gross slip) gives q = ±f p.
+std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p, const std::vector<double>* q_top);
+
+}  // namespace fretwear

@@ -1,0 +1,48 @@
+// The normal stage: the contact under the normal load P alone (contact/normal_solver.hpp), its zones located to
+// sub-cell accuracy, and its closed form where the profile has one (Hertz, the rounded and the sharp punch).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/contact_zones.hpp"
+#include "contact/grid.hpp"
+#include "contact/normal_solver.hpp"
+#include "contact/window.hpp"
+#include "engine/scene.hpp"
+#include "engine/setup.hpp"
+
+namespace fretwear {
+
+// The closed form the scene's profile has, if any, compared with the solution.
+struct Reference {
+  std::string kind;             // "hertz", "rounded_punch", "flat_punch"
+  double half_width = 0.0;      // closed-form half-width (m)
+  double centre = 0.0;          // m
+  double p_max = 0.0;           // closed-form peak pressure (Pa); for the flat punch, that of the edge cells
+  std::vector<double> p_cell;   // closed-form cell-average pressure per cell (Pa)
+  double extent_error = 0.0;    // max |edge − closed form| / half-width
+  double p_max_error = 0.0;     // |p_max − closed form| / closed form
+  double rms_error = 0.0;       // RMS of p − p_cell over the contact cells less two at each edge, / p_max
+};
+
+struct NormalResult {
+  Grid grid;
+  WindowChoice window;
+  std::vector<double> g0;       // initial gap per cell (m), +∞ off the pad
+  ContactState state;
+  SolveSummary summary;
+  std::vector<Zone> zones;
+  double p_max = 0.0, x_p_max = 0.0;
+  int cells_in_contact = 0;
+  std::optional<double> load_size_half_width;  // second, independent answer for symmetric single-zone profiles
+  std::optional<Reference> reference;
+};
+
+// The normal contact. Throws ConvergenceError when the solve does not converge, InputError when the contact
+// reaches the end of a given window or no cell of it can touch.
+NormalResult solve_normal(const Scene& scene, const Model& model);
+NormalResult solve_normal(const Scene& scene, int cells = 0);
+
+}  // namespace fretwear

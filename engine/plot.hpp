@@ -1,0 +1,21 @@
+// gnuplot, as the writers use it: a plot command drawn into SVG and PNG, run inside the results folder. The
+// scripts are written beside the plots, so that a user can edit and re-run them (gnuplot NAME.gp).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace fretwear {
+
+// gnuplot commands that draw `plot` (a plot or splot command with its newline) into <stem>.svg and <stem>.png.
+std::string svg_and_png(const std::string& stem, const std::string& plot, int width = 1000, int height = 560);
+// The same into <stem>.png alone: for colour maps, whose SVG holds a polygon per grid point (8 MB for 161 × 81).
+std::string png_only(const std::string& stem, const std::string& plot, int width = 1000, int height = 560);
+
+// Runs gnuplot on `script` inside `dir`; false (and a note on stderr) when gnuplot is missing or fails.
+bool run_gnuplot(const std::filesystem::path& dir, const std::string& script_file);
+
+// A number for a CSV cell: 10 significant digits, ±inf spelled out.
+std::string csv_number(double v);
+
+}  // namespace fretwear

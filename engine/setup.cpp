@@ -1,0 +1,65 @@
+#include "engine/setup.hpp"
+
+#include <fmt/format.h>
+
+#include "engine/normal_stage.hpp"
+#include "engine/wear_stage.hpp"
+
+namespace fretwear {
+namespace {
+
+Model model_on(const Scene& scene, const Grid& grid, const WindowChoice& window) {
+  Model m{ElasticPair(scene.pad, scene.specimen, scene.plane), Profile(scene.profile), grid, window, {}, nullptr};
+  m.g0.resize(m.grid.n);
+  for (int i = 0; i < m.grid.n; ++i) m.g0[i] = m.profile.gap(m.grid.x(i));
+  m.kernel = std::make_unique<HalfPlaneKernel>(m.grid, m.pair.A());
+  return m;
+}
+
+// A wearing contact grows past its original edges up to the asymptote's worn extent (PHYSICS.md, "Wear": x_e > a),
+// which the default window must cover with the same margin: compute the asymptote on a coarse, wide grid.
+WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
+  constexpr int kTrialCells = 1024;
+  const double centre = 0.5 * (w.x_min + w.x_max);
+  double half = 0.5 * (w.x_max - w.x_min);
+  for (int attempt = 0; attempt < 6; ++attempt, half *= 2.0) {
+    const double lo = centre - 2.5 * half, hi = centre + 2.5 * half;
+    const Model trial = model_on(scene, align_to_support(profile, lo, hi, kTrialCells), {lo, hi, "trial", 0.0});
+    const NormalResult normal = solve_normal(scene, trial);
+    const WearAsymptote a = wear_asymptote(scene, trial, normal);
+    if (a.worn_area <= 0.0) return w;
+    if (a.extent.first <= trial.grid.x_min + trial.grid.h() || a.extent.second >= trial.grid.x_max - trial.grid.h())
+      continue;
+    const double l = std::min(a.extent.first, normal.zones.front().left.x);
+    const double r = std::max(a.extent.second, normal.zones.back().right.x);
+    const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
+    return {std::min(w.x_min, c - 1.5 * hw), std::max(w.x_max, c + 1.5 * hw), w.method + "+wear_asymptote",
+            w.expected_half_width};
+  }
+  throw InputError("grid: the asymptotic worn zone keeps reaching the end of a trial window 64 times the contact; "
+                   "give grid.window");
+}
+
+}  // namespace
+
+Model make_model(const Scene& scene, int cells) {
+  if (cells <= 0) cells = scene.cells;
+  const Profile profile(scene.profile);
+  const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
+  if (scene.window) {
+    return model_on(scene, Grid{scene.window->first, scene.window->second, cells},
+                    {scene.window->first, scene.window->second, "given", 0.0});
+  }
+  WindowChoice w;
+  try {
+    w = choose_window(profile, pair.A(), scene.P_max(), cells);  // a history's largest P too
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("grid.window: cannot be chosen for this profile and load ({}); give grid.window, "
+                                 "or check load.P and the profile's size",
+                                 e.what()));
+  }
+  if (scene.wear) w = widen_for_wear(scene, profile, w);
+  return model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w);
+}
+
+}  // namespace fretwear

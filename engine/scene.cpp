@@ -4,7 +4,9 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -21,8 +23,27 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
   return s;
 }
 
+// Appends j to s as compact JSON, stopping once s is longer than limit: every level writes a character before it
+// descends, so however deep j nests, the recursion is at most limit deep.
+void write_short(const json& j, std::string& s, std::size_t limit) {
+  const auto scalar = [](const json& v) { return v.dump(-1, ' ', true, json::error_handler_t::replace); };
+  if (j.is_array() || j.is_object()) {
+    s += j.is_array() ? '[' : '{';
+    bool first = true;
+    for (auto it = j.begin(); it != j.end() && s.size() <= limit; ++it, first = false) {
+      if (!first) s += ',';
+      if (j.is_object()) s += scalar(json(it.key())) + ':';
+      write_short(*it, s, limit);
+    }
+    s += j.is_array() ? ']' : '}';
+  } else {
+    s += scalar(j);
+  }
+}
+
 std::string describe(const json& j) {
-  std::string s = j.dump(-1, ' ', true, json::error_handler_t::replace);
+  std::string s;
+  write_short(j, s, 60);
   if (s.size() > 60) s = s.substr(0, 57) + "...";
   return s;
 }
@@ -754,6 +775,224 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   return s;
 }
 
+namespace {
+
+// An iterator over a scene's text that counts the characters the JSON parser has read, so that the SAX events, which
+// carry no position, can name their line.
+class CountingIterator {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  CountingIterator(const char* at, std::size_t* n_read) : at_(at), n_read_(n_read) {}
+  reference operator*() const { return *at_; }
+  CountingIterator& operator++() {
+    ++at_;
+    ++*n_read_;
+    return *this;
+  }
+  CountingIterator operator++(int) {
+    CountingIterator before = *this;
+    ++*this;
+    return before;
+  }
+  bool operator==(const CountingIterator& other) const { return at_ == other.at_; }
+
+ private:
+  const char* at_;
+  std::size_t* n_read_;
+};
+
+// Builds the document from nlohmann's SAX events, as its json_sax_dom_parser does, and keeps what a document
+// forgets: the JSON path of each value and the line of each key. A key given twice in an object, a number that
+// overflows a double and nesting deeper than kMaxSceneDepth become problems naming the path and the line; a syntax
+// error becomes one naming the source, with nlohmann's line and column. The work stays linear in the text: a path
+// is kept as its parts and written out only for a problem.
+class SceneText {
+ public:
+  SceneText(std::string_view text, std::string source, json& root)
+      : text_(text), source_(std::move(source)), root_(root) {}
+
+  CountingIterator begin() { return {text_.data(), &n_read_}; }
+  CountingIterator end() { return {text_.data() + text_.size(), &n_read_}; }
+
+  // The problems of the text: the keys given more than once (in the order of their second line), then what stopped
+  // the parser, if anything did.
+  std::vector<std::string> problems() {
+    std::stable_sort(duplicates_.begin(), duplicates_.end(),
+                     [](const Duplicate& a, const Duplicate& b) { return a.lines[1] < b.lines[1]; });
+    std::vector<std::string> out;
+    for (const auto& d : duplicates_) {
+      std::string lines;
+      for (std::size_t i = 0; i < d.lines.size(); ++i)
+        lines += (i == 0 ? "" : i + 1 == d.lines.size() ? " and " : ", ") + std::to_string(d.lines[i]);
+      const std::string times = d.lines.size() == 2 ? "twice" : fmt::format("{} times", d.lines.size());
+      out.push_back(fmt::format("{}: given {} (lines {}); give each key once", d.path, times, lines));
+    }
+    if (n_duplicates_ > duplicates_.size())
+      out.push_back(fmt::format("(top): {} more keys are given more than once; give each key once",
+                                n_duplicates_ - duplicates_.size()));
+    if (stop_) out.push_back(*stop_);
+    return out;
+  }
+
+  // The SAX events (nlohmann/detail/input/json_sax.hpp).
+  bool null() { return value(nullptr); }
+  bool boolean(bool v) { return value(v); }
+  bool number_integer(json::number_integer_t v) { return value(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return value(v); }
+  bool number_float(json::number_float_t v, const json::string_t&) { return value(v); }
+  bool string(json::string_t& v) { return value(std::move(v)); }
+  bool binary(json::binary_t& v) { return value(std::move(v)); }
+  bool start_object(std::size_t) { return open(json::value_t::object); }
+  bool start_array(std::size_t) { return open(json::value_t::array); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(json::string_t& k) {
+    Frame& f = frames_.back();
+    f.lines[k].push_back(line_at(n_read_));  // the parser has just read the key's closing quote
+    f.key = k;
+    element_ = &(*f.value)[k];  // a key given again replaces the value; the duplicate is a problem
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception& e) {
+    if (e.id == 406) {  // out_of_range.406: the number overflows a double
+      stop_ = fmt::format("{}: {} on line {} overflows a double; give a number between -1.8e308 and 1.8e308 (and "
+                          "within the key's range)",
+                          path(frames_.size(), next_part()), shortened(token), line_at(position));
+    } else {
+      stop_ = fmt::format("{}: not valid JSON (UTF-8): {}", source_, e.what());
+    }
+    close_all();
+    return false;
+  }
+
+ private:
+  struct Frame {
+    json* value;                                            // the object or array being filled
+    std::string part;                                       // its part of the path: "key", ".key" or "[i]"
+    std::string key;                                        // an object's latest key
+    std::map<std::string, std::vector<std::size_t>> lines;  // an object's keys, each with the lines it is on
+  };
+  struct Duplicate {
+    std::string path;
+    std::vector<std::size_t> lines;
+  };
+  static constexpr std::size_t kMaxDuplicatesNamed = 100;
+
+  static std::string shortened(const std::string& s) { return s.size() > 40 ? s.substr(0, 37) + "..." : s; }
+
+  // The part of the path that names the value the parser reads next.
+  std::string next_part() const {
+    if (frames_.empty()) return "";
+    const Frame& f = frames_.back();
+    if (f.value->is_array()) return fmt::format("[{}]", f.value->size());
+    return (frames_.size() == 1 ? "" : ".") + shortened(f.key);
+  }
+
+  // The JSON path of the first n open frames followed by last; "(top)" when empty.
+  std::string path(std::size_t n, const std::string& last) const {
+    std::string p;
+    for (std::size_t i = 0; i < n; ++i) p += frames_[i].part;
+    p += last;
+    return p.empty() ? "(top)" : p;
+  }
+
+  // The line (from 1) of the character before offset.
+  std::size_t line_at(std::size_t offset) {
+    offset = std::min(offset, text_.size());
+    if (offset >= counted_to_)
+      n_newlines_ += std::size_t(std::count(text_.begin() + counted_to_, text_.begin() + offset, '\n'));
+    else
+      n_newlines_ -= std::size_t(std::count(text_.begin() + offset, text_.begin() + counted_to_, '\n'));
+    counted_to_ = offset;
+    return n_newlines_ + 1;
+  }
+
+  template <typename Value>
+  json* place(Value&& v) {
+    if (frames_.empty()) {
+      root_ = json(std::forward<Value>(v));
+      return &root_;
+    }
+    json& container = *frames_.back().value;
+    if (container.is_array()) {
+      container.push_back(json(std::forward<Value>(v)));
+      return &container.back();
+    }
+    *element_ = json(std::forward<Value>(v));
+    return element_;
+  }
+
+  template <typename Value>
+  bool value(Value&& v) {
+    place(std::forward<Value>(v));
+    return true;
+  }
+
+  bool open(json::value_t type) {
+    std::string part = next_part();
+    if (frames_.size() >= kMaxSceneDepth) {
+      stop_ = fmt::format("{}: nests deeper than {} objects and arrays (line {}); a scene needs far fewer levels",
+                          path(frames_.size(), part), kMaxSceneDepth, line_at(n_read_));
+      close_all();
+      return false;
+    }
+    json* v = place(type);
+    frames_.push_back({v, std::move(part), {}, {}});
+    return true;
+  }
+
+  bool close() {
+    const Frame& f = frames_.back();
+    for (const auto& [k, lines] : f.lines) {
+      if (lines.size() < 2) continue;
+      if (++n_duplicates_ <= kMaxDuplicatesNamed)
+        duplicates_.push_back({path(frames_.size(), (frames_.size() == 1 ? "" : ".") + shortened(k)), lines});
+    }
+    frames_.pop_back();
+    return true;
+  }
+
+  // Reports the duplicates of the objects still open when the parser stops.
+  void close_all() {
+    while (!frames_.empty()) close();
+  }
+
+  std::string_view text_;
+  std::string source_;
+  json& root_;
+  std::size_t n_read_ = 0;                       // characters the parser has read
+  std::size_t counted_to_ = 0, n_newlines_ = 0;  // newlines in text_[0, counted_to_)
+  std::vector<Frame> frames_;                    // the open objects and arrays, outermost first
+  json* element_ = nullptr;                      // where an object's next value goes
+  std::vector<Duplicate> duplicates_;            // the first kMaxDuplicatesNamed
+  std::size_t n_duplicates_ = 0;
+  std::optional<std::string> stop_;              // what stopped the parser
+};
+
+}  // namespace
+
+Scene parse_scene_text(std::string_view text, const std::string& default_name, const std::string& source) {
+  json j;
+  SceneText reader(text, source, j);
+  const bool complete = json::sax_parse(reader.begin(), reader.end(), &reader);
+  std::vector<std::string> problems = reader.problems();
+  if (!complete) throw SceneError(std::move(problems));
+  try {
+    Scene s = parse_scene(j, default_name);
+    if (problems.empty()) return s;
+  } catch (const SceneError& e) {
+    problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+  }
+  throw SceneError(std::move(problems));
+}
+
 Scene load_scene(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -768,13 +1007,7 @@ Scene load_scene(const std::filesystem::path& path) {
   if (!in) throw SceneError({path.string() + ": cannot be opened for reading"});
   std::stringstream buf;
   buf << in.rdbuf();
-  json j;
-  try {
-    j = json::parse(buf.str());
-  } catch (const json::parse_error& e) {
-    throw SceneError({fmt::format("{}: not valid JSON (UTF-8): {}", path.string(), e.what())});
-  }
-  return parse_scene(j, path.stem().string());
+  return parse_scene_text(buf.str(), path.stem().string(), path.string());
 }
 
 json Scene::to_json() const {

@@ -3,9 +3,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -90,15 +93,22 @@ struct Scene {
   nlohmann::json to_json() const;
 };
 
-// The largest scene file read, and the grid sizes accepted.
+// The largest scene file read, the deepest nesting of its objects and arrays (a scene needs about 20: profiles
+// nest 8 levels, two each), and the grid sizes accepted.
 constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;
+constexpr std::size_t kMaxSceneDepth = 64;
 constexpr int kMinCells = 16;
 constexpr int kMaxCells = 1 << 20;
 
 // Validates j as a scene; throws SceneError listing every problem. default_name names a scene without "name".
 Scene parse_scene(const nlohmann::json& j, const std::string& default_name = "scene");
-// Reads and parses a scene file; file problems (missing, a directory, too large, not JSON, not UTF-8) are
-// SceneErrors too.
+// Reads the JSON text of a scene and validates it (parse_scene). Problems of the text are SceneErrors naming the
+// JSON path and the line, listed before parse_scene's: a key given twice in an object, a number that overflows a
+// double, nesting deeper than kMaxSceneDepth; and text that is not JSON (UTF-8), named by source. Only a key given
+// twice lets parse_scene run as well; the others stop the reading. Throws nothing but SceneError (and bad_alloc).
+Scene parse_scene_text(std::string_view text, const std::string& default_name = "scene",
+                       const std::string& source = "the scene");
+// Reads a scene file and parses its text; file problems (missing, a directory, too large) are SceneErrors too.
 Scene load_scene(const std::filesystem::path& path);
 // The default scene, as `fretwear defaults` prints it.
 nlohmann::json default_scene_json();

@@ -41,6 +41,29 @@ bool reports(const json& j, const std::string& path, std::initializer_list<std::
   return false;
 }
 
+// The problems parse_scene_text reports for text (empty when it is valid).
+std::vector<std::string> text_problems(const std::string& text) {
+  try {
+    parse_scene_text(text, "s");
+  } catch (const SceneError& e) {
+    return e.problems();
+  }
+  return {};
+}
+
+// good() written one key a line; extra is put in "load" after P (P on line 7, extra from line 8).
+std::string good_text(const std::string& extra = "") {
+  return "{\n"
+         "\"name\": \"s\",\n"
+         "\"materials\": {\"both\": {\"E\": 2e11, \"nu\": 0.3}},\n"
+         "\"profile\": {\"type\": \"cylinder\", \"R\": 0.01},\n"
+         "\"load\": {\n"
+         "\n"
+         "  \"P\": 1e5" + extra + "\n"
+         "}\n"
+         "}\n";
+}
+
 }  // namespace
 
 TEST_CASE("a minimal scene gets every default") {
@@ -269,4 +292,55 @@ TEST_CASE("names must make a folder name") {
   json j = good();
   j["name"] = "../escape";
   CHECK(reports(j, "name", {"folder"}));
+}
+
+TEST_CASE("the text of a scene: a valid one parses as its document does") {
+  CHECK(text_problems(good_text()).empty());
+  CHECK(parse_scene_text(good_text()).to_json() == parse_scene(json::parse(good_text()), "scene").to_json());
+}
+
+TEST_CASE("a number that overflows a double names its key's path and line, never an internal error") {
+  std::vector<std::string> p = text_problems(good_text(",\n  \"Q\": {\"amplitude\": 1e309}"));
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].rfind("load.Q.amplitude: 1e309 on line 8 overflows a double", 0) == 0);
+  CHECK(p[0].find("1.8e308") != std::string::npos);
+  p = text_problems("{\"profile\": {\"type\": \"table\", \"x\": [0, -1e400], \"h\": [0, 0]}}");
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].rfind("profile.x[1]: -1e400 on line 1 overflows", 0) == 0);
+  p = text_problems("\n 1" + std::string(400, '0'));
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].rfind("(top): 1000000000000000000000000000000000000... on line 2 overflows", 0) == 0);
+}
+
+TEST_CASE("a key given twice names its full path and every line, with the scene's other problems") {
+  std::vector<std::string> p = text_problems(good_text(",\n  \"P\": -1,\n  \"P\": 2e5"));
+  REQUIRE(p.size() == 1);
+  CHECK(p[0] == "load.P: given 3 times (lines 7, 8 and 9); give each key once");
+  p = text_problems(good_text(",\n  \"P\": 2e5,\n  \"lod\": 1"));
+  REQUIRE(p.size() == 2);  // every problem at once
+  CHECK(p[0] == "load.P: given twice (lines 7 and 8); give each key once");
+  CHECK(p[1].rfind("load.lod: unknown key", 0) == 0);
+  p = text_problems("{\"materials\": {\"both\": {\"E\": 1, \"E\": 1}}, \"name\": [{\"a\": 1,\n\"a\": 2}]}");
+  CHECK(p.at(0) == "materials.both.E: given twice (lines 1 and 1); give each key once");
+  CHECK(p.at(1) == "name[0].a: given twice (lines 1 and 2); give each key once");
+}
+
+TEST_CASE("the text of a scene: not JSON is named so; nesting is bounded however deep the text goes") {
+  std::vector<std::string> p = text_problems("{\"name\": \"s\",}");
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].find("not valid JSON") != std::string::npos);
+  CHECK(p[0].find("line 1, column 14") != std::string::npos);
+  const std::size_t n = 1'000'000;
+  p = text_problems("{\"name\": " + std::string(n, '[') + std::string(n, ']') + "}");
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].find("nests deeper than 64") != std::string::npos);
+  CHECK(p[0].rfind("name[0][0]", 0) == 0);
+}
+
+TEST_CASE("a deep document handed to parse_scene is described without deep recursion") {
+  json deep = json::array();
+  for (int i = 0; i < 100000; ++i) deep = json::array({std::move(deep)});
+  json j = good();
+  j["name"] = std::move(deep);
+  CHECK(reports(j, "name", {"[[[[", "...", "an array"}));
 }

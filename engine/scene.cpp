@@ -661,10 +661,11 @@ Scene parse_scene(const json& j, const std::string& default_name) {
 
   if (const json* o = top.object("output", false)) {
     Reader r(*o, "output", problems);
-    if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
-      if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
-      s.output_dir = *dir;
-    }
+    if (r.find("dir"))  // optional: output/<name> below
+      if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
+        if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
+        s.output_dir = *dir;
+      }
     s.plots = r.boolean("plots", true).value_or(true);
     r.finish();
   }

@@ -344,3 +344,13 @@ TEST_CASE("a deep document handed to parse_scene is described without deep recur
   j["name"] = std::move(deep);
   CHECK(reports(j, "name", {"[[[[", "...", "an array"}));
 }
+
+TEST_CASE("output.dir defaults to output/<name> also when only output.plots is given") {
+  json j = good();
+  j["output"] = {{"plots", false}};
+  const Scene s = parse_scene(j);
+  CHECK(s.output_dir == std::filesystem::path("output/s"));
+  CHECK_FALSE(s.plots);
+  j["output"] = {{"dir", ""}};
+  CHECK(reports(j, "output.dir", {"is empty"}));
+}

@@ -370,26 +370,34 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     }
   }
 
+  const std::size_t n_problems_before_materials = problems.size();
   if (const json* m = top.object("materials", true)) {
     Reader r(*m, "materials", problems);
-    const json* both = r.object("both", false);
-    const json* pad = r.object("pad", false);
-    const json* spec = r.object("specimen", false);
+    // Which form is given is read from the keys; a member that is not an object is reported once, as such.
+    const bool both = r.find("both"), pad = r.find("pad"), spec = r.find("specimen");
+    const auto read = [&](const char* key, Material& into) {
+      if (const json* v = r.object(key, false)) into = parse_material(*v, std::string("materials.") + key, problems);
+    };
     if (both && (pad || spec)) {
       r.problem("materials", "give either \"both\" or \"pad\" and \"specimen\", not both forms");
     } else if (both) {
-      s.pad = s.specimen = parse_material(*both, "materials.both", problems);
+      read("both", s.pad);
+      s.specimen = s.pad;
     } else if (pad && spec) {
-      s.pad = parse_material(*pad, "materials.pad", problems);
-      s.specimen = parse_material(*spec, "materials.specimen", problems);
+      read("pad", s.pad);
+      read("specimen", s.specimen);
       s.similar = false;
-    } else if (!pad && !spec && m->is_object()) {
+    } else if (!pad && !spec) {
       r.problem("materials", "give \"both\" (similar bodies) or \"pad\" and \"specimen\"");
     } else {
+      read(pad ? "pad" : "specimen", pad ? s.pad : s.specimen);
       r.problem(pad ? "materials.specimen" : "materials.pad", "missing; give {\"E\": ..., \"nu\": ...}");
     }
     r.finish();
   }
+
+  // The coupling checks below need the moduli as given, not the placeholders of invalid ones.
+  const bool materials_ok = problems.size() == n_problems_before_materials;
 
   if (const json* p = top.find("profile")) {
     s.profile = parse_profile(*p, "profile", problems, 0);
@@ -397,15 +405,23 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
   }
 
-  const bool friction_given = top.find("friction") != nullptr;  // an invalid value is reported once, not as missing
+  // What the scene gives, valid or not: an invalid value is reported once, for what it is, and never again as
+  // missing (or as given where it is not used) by the checks of what the effects need.
+  const bool friction_given = top.find("friction") != nullptr;
   if (friction_given)
     s.friction = top.number("friction", std::nullopt,
                             {[](double v) { return v > 0.0 && v <= 10.0; }, "a friction coefficient in (0, 10]"});
 
-  bool history_given = false;  // even when invalid: then load.Q is not asked for
+  bool load_read = false;  // load is an object: the checks may ask for what it lacks
+  bool P_ok = false, Q_given = false, delta_given = false, history_given = false;
+  std::optional<LoadControl> control = LoadControl::force;  // nullopt: an invalid word
   if (const json* l = top.object("load", true)) {
     Reader r(*l, "load", problems);
-    s.P = r.number("P", std::nullopt, {[](double v) { return v > 0.0; }, "a normal load > 0 N/m"}).value_or(1.0);
+    load_read = true;
+    const auto P = r.number("P", std::nullopt, {[](double v) { return v > 0.0; }, "a normal load > 0 N/m"});
+    P_ok = P.has_value();
+    s.P = P.value_or(1.0);
+    Q_given = r.find("Q") != nullptr;
     if (const json* q = r.object("Q", false)) {
       Reader rq(*q, "load.Q", problems);
       const bool has_amplitude = q->contains("amplitude"), has_ratio = q->contains("ratio");
@@ -425,17 +441,20 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       s.bulk_stress = rb.number("amplitude", 0.0).value_or(0.0);
       rb.finish();
     }
-    if (auto control = r.string("control", "force", "\"force\" or \"displacement\"")) {
-      if (*control == "force") {
-        s.control = LoadControl::force;
-      } else if (*control == "displacement") {
-        s.control = LoadControl::displacement;
-      } else {
-        r.problem("load.control",
-                  fmt::format("\"{}\" is not a load control; use \"force\" or \"displacement\"", *control));
-      }
+    const auto word = r.string("control", "force", "\"force\" or \"displacement\"");
+    if (!word) {
+      control.reset();
+    } else if (*word == "force") {
+      s.control = LoadControl::force;
+    } else if (*word == "displacement") {
+      s.control = LoadControl::displacement;
+    } else {
+      r.problem("load.control", fmt::format("\"{}\" is not a load control; use \"force\" or \"displacement\"", *word));
+      control.reset();
     }
-    if (r.find("delta"))
+    if (control) control = s.control;
+    delta_given = r.find("delta") != nullptr;
+    if (delta_given)
       s.delta = r.number("delta", std::nullopt,
                          {[](double v) { return v > 0.0 && v < 1.0; }, "a displacement amplitude in (0, 1) m"});
     if (const json* hv = r.find("history")) {
@@ -487,7 +506,10 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     r.finish();
   }
 
+  // A window given, valid or not, or a grid that is not an object: a missing window is not asked for.
+  bool window_given = top.find("grid") != nullptr, reference_depth_given = false;
   if (const json* g = top.object("grid", false)) {
+    window_given = g->contains("window");
     Reader r(*g, "grid", problems);
     if (const json* c = r.find("cells")) {
       const bool whole = c->is_number_integer() || (c->is_number_float() && std::isfinite(c->get<double>()) &&
@@ -512,12 +534,15 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         s.window = std::pair((*w)[0].get<double>(), (*w)[1].get<double>());
       }
     }
-    if (r.find("reference_depth"))
+    reference_depth_given = r.find("reference_depth") != nullptr;
+    if (reference_depth_given)
       s.reference_depth = r.number("reference_depth", std::nullopt,
                                    {[](double v) { return v > 0.0; }, "a depth > 0 m below the contact centre"});
     r.finish();
   }
 
+  // Effects given but not readable: which ones the scene asks for is unknown, and so is what they need.
+  const bool effects_unknown = top.find("effects") && !top.find("effects")->is_object();
   if (const json* e = top.object("effects", false)) {
     Reader r(*e, "effects", problems);
     if (const json* t = r.object("tangential", false)) {
@@ -540,13 +565,18 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                   .value_or(40.0));
       rt.finish();
       s.tangential = effect;
+    } else if (r.find("tangential")) {
+      s.tangential = TangentialEffect{};  // asked for, though not readable: the checks of what it needs still apply
     }
     if (const json* w = r.object("wear", false)) {
       Reader rw(*w, "effects.wear", problems);
       WearEffect effect;
-      effect.law = rw.string("law", "archard", "\"archard\" or \"energy\"").value_or("archard");
+      const auto law = rw.string("law", "archard", "\"archard\" or \"energy\"");
+      effect.law = law.value_or("");
       if (effect.law != "archard" && effect.law != "energy") {
-        rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
+        if (law)
+          rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
+        rw.find("k"), rw.find("alpha");  // which of them belongs is unknown until the law is: not unknown keys
       } else {
         const char* key = effect.law == "archard" ? "k" : "alpha";
         const char* other = effect.law == "archard" ? "alpha" : "k";
@@ -562,9 +592,9 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
                                                             "a share in [0, 1]"})
                                 .value_or(0.5);
-      effect.cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
-                                                         "a whole number of cycles from 1 to 1e12"})
-                          .value_or(1.0);
+      const auto cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
+                                                             "a whole number of cycles from 1 to 1e12"});
+      effect.cycles = cycles.value_or(1e12);  // records are checked against the cycles only when they are valid
       effect.stepper = rw.string("stepper", "implicit", "\"implicit\", \"explicit\" or \"cycle_by_cycle\"").value_or("implicit");
       if (effect.stepper != "implicit" && effect.stepper != "explicit" && effect.stepper != "cycle_by_cycle")
         rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not a stepper; use \"implicit\", \"explicit\" or "
@@ -595,10 +625,10 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       }
       rw.finish();
       s.wear = effect;
-      if (!s.tangential) {
-        s.tangential = TangentialEffect{};
-        s.tangential_implied = true;
-      }
+    }
+    if (r.find("wear") && !s.tangential) {
+      s.tangential = TangentialEffect{};
+      s.tangential_implied = true;
     }
     if (const json* st = r.object("stress", false)) {
       Reader rs(*st, "effects.stress", problems);
@@ -674,17 +704,19 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   top.finish();
 
   // What the effects need.
-  if (s.tangential) {
+  if (effects_unknown) {
+    // reported above; what the effects need is checked once they are readable
+  } else if (s.tangential) {
     const char* who = s.tangential_implied ? "effects.wear (through the load cycle it needs)" : "effects.tangential";
     if (!friction_given)
       problems.push_back(fmt::format("friction: missing; {} needs a friction coefficient in (0, 10]", who));
-    if (!s.history.empty()) {
-      if (s.Q_amplitude || s.Q_ratio)
+    if (history_given) {
+      if (Q_given)
         problems.push_back("load.Q: given with load.history, which gives Q at each point; remove load.Q");
       if (s.bulk_stress != 0.0)
         problems.push_back(
             "load.bulk_stress: given with load.history, which gives sigma_bulk at each point; remove it");
-      if (s.control != LoadControl::force)
+      if (control == LoadControl::displacement)
         problems.push_back("load.history: its points give Q; with load.control \"displacement\" it is not supported "
                            "yet; use load.control \"force\"");
       if (s.tangential->route == TangentialRoute::analogy)
@@ -697,23 +729,25 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       if (s.stress || s.crack)
         problems.push_back("effects.stress, effects.crack: their top and bottom phases assume the in-phase cycle of "
                            "load.Q; with load.history they are not supported yet");
-    } else if (s.control == LoadControl::force) {
-      if (!s.Q_amplitude && !s.Q_ratio && !history_given)
+    } else if (!control || !load_read) {
+      // the load control is unknown, or so is the whole load: nothing more to ask for
+    } else if (control == LoadControl::force) {
+      if (!Q_given)
         problems.push_back(fmt::format("load.Q: missing; {} needs {{\"amplitude\": Q (N/m)}} or {{\"ratio\": Q/(fP)}}",
                                        who));
-      if (s.delta)
+      if (delta_given)
         problems.push_back("load.delta: given, but load.control is \"force\"; set load.control to \"displacement\" "
                            "or remove load.delta");
-      if (s.wear && s.friction && s.P > 0.0 && s.Q_max() >= *s.friction * s.P)
+      if (s.wear && s.friction && P_ok && s.Q_max() >= *s.friction * s.P)
         problems.push_back(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
                                        "under force control the slip, hence the wear, is not determined; prescribe "
                                        "the displacement instead (load.control \"displacement\" with load.delta)",
                                        s.Q_max(), *s.friction * s.P));
     } else {
-      if (!s.delta)
+      if (!delta_given)
         problems.push_back("load.delta: missing; load.control \"displacement\" needs the amplitude of the relative "
                            "tangential displacement of the reference points, a number in (0, 1) m");
-      if (s.Q_amplitude || s.Q_ratio)
+      if (Q_given)
         problems.push_back("load.Q: given with load.control \"displacement\", where Q is the result; remove load.Q");
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.control \"displacement\" (the "
@@ -721,14 +755,14 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     }
     const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
     // Dissimilar bodies: the incremental route couples the normal and tangential problems under force control.
-    if (std::abs(pair.beta()) > 1e-12) {
+    if (materials_ok && std::abs(pair.beta()) > 1e-12) {
       const std::string dissimilar = fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the "
                                                  "normal and tangential problems",
                                                  pair.beta());
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (s.control == LoadControl::displacement || history_given)
+      if (control == LoadControl::displacement || history_given)
         problems.push_back(dissimilar + "; the incremental route solves them under force control with Q between "
                                         "fixed limits, and load.control \"displacement\" or load.history with beta "
                                         "!= 0 is not supported yet");
@@ -738,17 +772,18 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                         "supported yet");
     }
   } else {
-    if (s.Q_amplitude || s.Q_ratio)
+    if (Q_given)
       problems.push_back("load.Q: given, but no effect uses it; add \"tangential\": {} to effects or remove load.Q");
     if (s.bulk_stress != 0.0)
       problems.push_back("load.bulk_stress: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (s.friction) problems.push_back("friction: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (!s.history.empty())
+    if (friction_given)
+      problems.push_back("friction: given, but no effect uses it; add \"tangential\": {} to effects");
+    if (history_given)
       problems.push_back("load.history: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (s.control != LoadControl::force || s.delta)
+    if (control != LoadControl::force || delta_given)
       problems.push_back("load.control, load.delta: given, but no effect uses them; add \"tangential\": {} to "
                          "effects");
-    if (s.reference_depth)
+    if (reference_depth_given)
       problems.push_back("grid.reference_depth: given, but no effect uses it (the displacement datum serves the load "
                          "cycle); add \"tangential\": {} to effects");
   }
@@ -764,7 +799,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         if (x < s.window->first || x > s.window->second)
           problems.push_back(fmt::format("grid.window: [{}, {}] does not contain the profile's lowest point x = {} m",
                                          s.window->first, s.window->second, x));
-      } else if (profile.periodic()) {
+      } else if (profile.periodic() && !window_given) {
         problems.push_back("grid.window: missing; a profile whose lowest point repeats (a lone waviness) needs "
                            "[x_min, x_max] (m)");
       }

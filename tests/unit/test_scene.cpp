@@ -354,3 +354,61 @@ TEST_CASE("output.dir defaults to output/<name> also when only output.plots is g
   j["output"] = {{"dir", ""}};
   CHECK(reports(j, "output.dir", {"is empty"}));
 }
+
+TEST_CASE("an invalid value is one problem: never also reported as missing, nor its placeholder judged") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["effects"] = {{"tangential", json::object()}};
+  const auto once = [&](const std::string& path, std::initializer_list<std::string> fragments) {
+    const auto p = problems(j);
+    CAPTURE(p.size() ? p[0] : "");
+    CHECK(p.size() == 1);
+    CHECK(reports(j, path, fragments));
+  };
+  j["load"]["Q"] = {{"ratio", -1}};
+  once("load.Q.ratio", {"-1 is not allowed"});
+  j["load"]["Q"] = {{"amplitude", "x"}};
+  once("load.Q.amplitude", {"a string"});
+  j["load"]["Q"] = 3;
+  once("load.Q", {"a number", "give an object"});
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["friction"] = "high";
+  once("friction", {"a string"});
+  j["friction"] = 0.5;
+  j["load"]["control"] = "displacment";
+  j["load"]["delta"] = 1e-6;
+  once("load.control", {"not a load control"});
+  j["load"]["control"] = "displacement";
+  j["load"].erase("Q");
+  j["load"]["delta"] = -1e-6;
+  once("load.delta", {"-1e-06 is not allowed"});
+  j["load"] = {{"P", 1e5}, {"history", {1, 2}}};
+  once("load.history[0]", {"[t, P, Q, sigma_bulk]"});
+  j["load"] = {{"P", 1e5}, {"Q", {{"ratio", 0.5}}}};
+  j["effects"] = {{"wear", {{"law", "archerd"}, {"k", 1e-15}, {"cycles", 1e6}}}};
+  once("effects.wear.law", {"not a wear law"});
+  j["effects"]["wear"]["law"] = 3;
+  once("effects.wear.law", {"a number"});
+  j["effects"]["wear"] = {{"law", "archard"}, {"k", 1e-15}, {"cycles", 0.5}, {"record", {10, 1e5}}};
+  once("effects.wear.cycles", {"whole number"});  // the records are not judged against an invalid count
+  j["effects"]["wear"]["cycles"] = 1e6;
+  j["load"] = {{"P", "1e5"}, {"Q", {{"amplitude", 1e4}}}};
+  once("load.P", {"a string"});  // nor is Q against f P with a placeholder P
+  j["load"] = {{"P", 1e5}, {"Q", {{"ratio", 0.5}}}};
+  j["effects"] = {{"tangential", 1}};
+  once("effects.tangential", {"give an object"});
+  j["effects"] = 1;
+  once("effects", {"give an object"});
+  j["effects"] = {{"tangential", json::object()}};
+  j["materials"] = {{"pad", 1}, {"specimen", {{"E", 7e10}, {"nu", 0.33}}}};
+  once("materials.pad", {"give an object"});
+  j["materials"] = {{"both", 1}};
+  once("materials.both", {"give an object"});
+  j["materials"] = {{"pad", {{"E", "2e11"}, {"nu", 0.3}}}, {"specimen", {{"E", 2e11}, {"nu", 0.3}}}};
+  j["effects"] = {{"tangential", {{"route", "analogy"}}}};
+  once("materials.pad.E", {"a string"});  // no dissimilar pair made of a placeholder modulus
+  j = good();
+  j["profile"] = {{"type", "wavy"}, {"amplitude", 1e-6}, {"wavelength", 1e-3}};
+  j["grid"] = {{"window", {1e-3}}};
+  once("grid.window", {"[x_min, x_max]"});
+}

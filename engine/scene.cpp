@@ -79,10 +79,44 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 struct Bound {
   std::function<bool(double)> ok;
-  std::string allowed;  // e.g. "> 0"
+  std::string allowed;  // e.g. "a radius in [1e-9, 100] m"
 };
-const Bound kPositive{[](double v) { return v > 0.0; }, "a number > 0"};
 const Bound kAny{[](double) { return true; }, "a finite number"};
+
+// v written short for a message: 1e-9, 1000, 1e12.
+std::string short_number(double v) {
+  const std::string s = fmt::format("{:g}", v);
+  const auto e = s.find('e');
+  if (e == std::string::npos) return s;
+  const bool negative = s[e + 1] == '-';
+  const std::string digits = s.substr(e + 2);  // "09" of 1e-09, "12" of 1e+12
+  const std::size_t first = std::min(digits.find_first_not_of('0'), digits.size() - 1);
+  return s.substr(0, e) + (negative ? "e-" : "e") + digits.substr(first);
+}
+
+// "[1e-9, 1000] m", or "[1e-9, 1) m" when hi_open.
+std::string interval(double lo, double hi, const std::string& unit, bool hi_open = false) {
+  return fmt::format("[{}, {}{}{}", short_number(lo), short_number(hi), hi_open ? ")" : "]",
+                     unit.empty() ? "" : " " + unit);
+}
+
+// A number in [lo, hi], or [lo, hi) when hi_open, named for the message: "a radius in [1e-9, 1000] m".
+Bound within(double lo, double hi, const std::string& what, const std::string& unit, bool hi_open = false) {
+  return {[=](double v) { return v >= lo && (hi_open ? v < hi : v <= hi); },
+          what + " in " + interval(lo, hi, unit, hi_open)};
+}
+// The spans of scene.hpp, for each kind of number.
+Bound length(const std::string& what) { return within(spans::kMinLength, spans::kMaxLength, what, "m"); }
+Bound position(const std::string& what = "a position") {
+  return within(-spans::kMaxPosition, spans::kMaxPosition, what, "m");
+}
+Bound stress(const std::string& what = "a stress") { return within(-spans::kMaxStress, spans::kMaxStress, what, "Pa"); }
+Bound normal_load() { return within(spans::kMinLoad, spans::kMaxLoad, "a normal load", "N/m"); }
+Bound tangential_load(double lo = -spans::kMaxLoad) { return within(lo, spans::kMaxLoad, "a tangential load", "N/m"); }
+Bound time_point() { return within(-spans::kMaxTime, spans::kMaxTime, "a time", "s"); }
+Bound displacement_amplitude() {
+  return within(spans::kMinLength, spans::kMaxDelta, "a displacement amplitude", "m", true);
+}
 
 // Collects problems while reading one JSON object; every read names the full JSON path.
 class Reader {
@@ -197,34 +231,34 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
     r.problem(r.at("type"), fmt::format("\"{}\" is not a profile type; use one of {}", *type, profile_type_words()));
     return s;
   }
-  s.offset_x = r.number("offset_x", 0.0).value_or(0.0);
+  s.offset_x = r.number("offset_x", 0.0, position()).value_or(0.0);
   s.tilt_rad = r.number("tilt_rad", 0.0, {[](double v) { return std::abs(v) < 1.0; }, "a number in (−1, 1) rad"})
                    .value_or(0.0);
   const Bound angle{[](double v) { return v > 0.0 && v < 90.0; }, "an angle in (0, 90) degrees"};
   switch (s.type) {
     case ProfileType::cylinder:
-      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      s.R = r.number("R", std::nullopt, length("a radius")).value_or(1.0);
       break;
     case ProfileType::flat_rounded:
-      s.a = r.number("a", std::nullopt, kPositive).value_or(1.0);
-      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      s.a = r.number("a", std::nullopt, length("a flat half-length")).value_or(1.0);
+      s.R = r.number("R", std::nullopt, length("a radius")).value_or(1.0);
       break;
     case ProfileType::flat:
-      s.b = r.number("b", std::nullopt, kPositive).value_or(1.0);
+      s.b = r.number("b", std::nullopt, length("a half-width")).value_or(1.0);
       break;
     case ProfileType::wedge:
       s.angle_deg = r.number("angle_deg", std::nullopt, angle).value_or(1.0);
       break;
     case ProfileType::rounded_wedge:
       s.angle_deg = r.number("angle_deg", std::nullopt, angle).value_or(1.0);
-      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      s.R = r.number("R", std::nullopt, length("a radius")).value_or(1.0);
       break;
     case ProfileType::wavy:
-      s.amplitude = r.number("amplitude", std::nullopt, kPositive).value_or(1.0);
-      s.wavelength = r.number("wavelength", std::nullopt, kPositive).value_or(1.0);
+      s.amplitude = r.number("amplitude", std::nullopt, length("an amplitude")).value_or(1.0);
+      s.wavelength = r.number("wavelength", std::nullopt, length("a wavelength")).value_or(1.0);
       break;
     case ProfileType::table: {
-      auto read_array = [&](const std::string& key, std::vector<double>& out) {
+      auto read_array = [&](const std::string& key, const Bound& span, std::vector<double>& out) {
         const json* v = r.find(key);
         if (!v) return r.problem(r.at(key), "missing; give an array of at least two numbers (m)");
         if (!v->is_array())
@@ -233,11 +267,14 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
           const json& e = (*v)[i];
           if (!e.is_number() || !std::isfinite(e.get<double>()))
             return r.problem(fmt::format("{}[{}]", r.at(key), i), fmt::format("{} is not a finite number", describe(e)));
+          if (!span.ok(e.get<double>()))
+            return r.problem(fmt::format("{}[{}]", r.at(key), i),
+                             fmt::format("{} is not allowed; give {}", describe(e), span.allowed));
           out.push_back(e.get<double>());
         }
       };
-      read_array("x", s.x);
-      read_array("h", s.h);
+      read_array("x", position(), s.x);
+      read_array("h", position("a height"), s.h);
       if (r.find("x") && r.find("h") && (*r.find("x")).is_array() && (*r.find("h")).is_array()) {
         const auto nx = r.find("x")->size(), nh = r.find("h")->size();
         if (nx < 2) r.problem(r.at("x"), fmt::format("has {} point(s); a table needs at least two", nx));
@@ -281,7 +318,7 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
 Material parse_material(const json& j, const std::string& path, std::vector<std::string>& problems) {
   Reader r(j, path, problems);
   Material m;
-  m.E = r.number("E", std::nullopt, {[](double v) { return v > 0.0 && v < 1e15; }, "a Young's modulus > 0 Pa"})
+  m.E = r.number("E", std::nullopt, within(spans::kMinModulus, spans::kMaxModulus, "a Young's modulus", "Pa"))
             .value_or(1.0);
   m.nu = r.number("nu", std::nullopt,
                   {[](double v) { return v > -1.0 && v < 0.5; }, "a Poisson's ratio in (-1, 0.5)"})
@@ -418,27 +455,26 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   if (const json* l = top.object("load", true)) {
     Reader r(*l, "load", problems);
     load_read = true;
-    const auto P = r.number("P", std::nullopt, {[](double v) { return v > 0.0; }, "a normal load > 0 N/m"});
+    const auto P = r.number("P", std::nullopt, normal_load());
     P_ok = P.has_value();
     s.P = P.value_or(1.0);
     Q_given = r.find("Q") != nullptr;
     if (const json* q = r.object("Q", false)) {
       Reader rq(*q, "load.Q", problems);
       const bool has_amplitude = q->contains("amplitude"), has_ratio = q->contains("ratio");
-      const Bound non_negative{[](double v) { return v >= 0.0; }, "a number >= 0"};
       if (has_amplitude == has_ratio) {
         rq.problem("load.Q", "give exactly one of \"amplitude\" (N/m) or \"ratio\" (Q/(fP))");
         rq.find("amplitude"), rq.find("ratio");
       } else if (has_amplitude) {
-        s.Q_amplitude = rq.number("amplitude", std::nullopt, non_negative);
+        s.Q_amplitude = rq.number("amplitude", std::nullopt, tangential_load(0.0));
       } else {
-        s.Q_ratio = rq.number("ratio", std::nullopt, non_negative);
+        s.Q_ratio = rq.number("ratio", std::nullopt, within(0.0, spans::kMaxLoadRatio, "a ratio Q/(fP)", ""));
       }
       rq.finish();
     }
     if (const json* b = r.object("bulk_stress", false)) {
       Reader rb(*b, "load.bulk_stress", problems);
-      s.bulk_stress = rb.number("amplitude", 0.0).value_or(0.0);
+      s.bulk_stress = rb.number("amplitude", 0.0, stress()).value_or(0.0);
       rb.finish();
     }
     const auto word = r.string("control", "force", "\"force\" or \"displacement\"");
@@ -455,8 +491,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     if (control) control = s.control;
     delta_given = r.find("delta") != nullptr;
     if (delta_given)
-      s.delta = r.number("delta", std::nullopt,
-                         {[](double v) { return v > 0.0 && v < 1.0; }, "a displacement amplitude in (0, 1) m"});
+      s.delta = r.number("delta", std::nullopt, displacement_amplitude());
     if (const json* hv = r.find("history")) {
       history_given = true;
       const std::string what = "give a list of at least two points [t, P, Q, sigma_bulk] (s, N/m, N/m, Pa)";
@@ -464,6 +499,8 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         r.problem("load.history", fmt::format("{} is not {}; {}", describe(*hv),
                                               hv->is_array() ? "long enough" : "a list", what));
       } else {
+        const std::array<std::pair<const char*, Bound>, 4> point_spans{
+            {{"t", time_point()}, {"P", normal_load()}, {"Q", tangential_load()}, {"sigma_bulk", stress()}}};
         for (std::size_t i = 0; i < hv->size(); ++i) {
           const json& pt = (*hv)[i];
           const std::string at = fmt::format("load.history[{}]", i);
@@ -477,8 +514,13 @@ Scene parse_scene(const json& j, const std::string& default_name) {
           }
           const std::array<double, 4> v{pt[0].get<double>(), pt[1].get<double>(), pt[2].get<double>(),
                                         pt[3].get<double>()};
-          if (!(v[1] > 0.0)) {
-            r.problem(at, fmt::format("P = {} is not allowed; give a normal load > 0 N/m", v[1]));
+          std::optional<std::string> wrong;
+          for (std::size_t k = 0; k < v.size() && !wrong; ++k)
+            if (!point_spans[k].second.ok(v[k]))
+              wrong = fmt::format("{} = {} is not allowed; give {}", point_spans[k].first, v[k],
+                                  point_spans[k].second.allowed);
+          if (wrong) {
+            r.problem(at, *wrong);
             s.history.clear();
             break;
           }
@@ -527,17 +569,27 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     if (const json* w = r.find("window")) {
       if (!w->is_array() || w->size() != 2 || !(*w)[0].is_number() || !(*w)[1].is_number()) {
         r.problem("grid.window", fmt::format("{} is not [x_min, x_max]; give two numbers (m)", describe(*w)));
-      } else if (!((*w)[0].get<double>() < (*w)[1].get<double>()) || !std::isfinite((*w)[0].get<double>()) ||
-                 !std::isfinite((*w)[1].get<double>())) {
+      } else if (const double lo = (*w)[0].get<double>(), hi = (*w)[1].get<double>();
+                 !(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi)) {
         r.problem("grid.window", fmt::format("{} is empty; give [x_min, x_max] with x_min < x_max (m)", describe(*w)));
+      } else if (const Bound end = position(); !end.ok(lo) || !end.ok(hi)) {
+        for (std::size_t i : {0u, 1u})
+          if (!end.ok((*w)[i].get<double>()))
+            r.problem(fmt::format("grid.window[{}]", i),
+                      fmt::format("{} is not allowed; give {}", describe((*w)[i]), end.allowed));
+      } else if (hi - lo < spans::kMinLength) {
+        r.problem("grid.window", fmt::format("{} is narrower than {} m; give [x_min, x_max] with x_max - x_min >= {} m",
+                                             describe(*w), short_number(spans::kMinLength),
+                                             short_number(spans::kMinLength)));
       } else {
-        s.window = std::pair((*w)[0].get<double>(), (*w)[1].get<double>());
+        s.window = std::pair(lo, hi);
       }
     }
     reference_depth_given = r.find("reference_depth") != nullptr;
     if (reference_depth_given)
       s.reference_depth = r.number("reference_depth", std::nullopt,
-                                   {[](double v) { return v > 0.0; }, "a depth > 0 m below the contact centre"});
+                                   {length("a depth").ok, "a depth > 0 m below the contact centre, in " +
+                                                              interval(spans::kMinLength, spans::kMaxLength, "m")});
     r.finish();
   }
 
@@ -580,8 +632,8 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       } else {
         const char* key = effect.law == "archard" ? "k" : "alpha";
         const char* other = effect.law == "archard" ? "alpha" : "k";
-        effect.coefficient = rw.number(key, std::nullopt, {[](double v) { return v > 0.0 && v < 1.0; },
-                                                           "a wear coefficient in (0, 1) 1/Pa"})
+        effect.coefficient = rw.number(key, std::nullopt, within(spans::kMinWearCoefficient, spans::kMaxWearCoefficient,
+                                                                  "a wear coefficient", "1/Pa", true))
                                  .value_or(1e-15);
         if (w->contains(other)) {
           rw.find(other);
@@ -636,7 +688,9 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       const Bound points{[](double v) { return v >= 3 && v <= 2001 && v == std::floor(v); }, "a whole number from 3 to 2001"};
       effect.nx = int(rs.number("nx", 161.0, points).value_or(161.0));
       effect.ny = int(rs.number("ny", 81.0, points).value_or(81.0));
-      effect.depth = rs.number("depth", 0.0, {[](double v) { return v >= 0.0; }, "a depth >= 0 m (0: the contact half-width)"})
+      const Bound depth = length("a depth");
+      effect.depth = rs.number("depth", 0.0, {[depth](double v) { return v == 0.0 || depth.ok(v); },
+                                              "0 (the contact half-width) or " + depth.allowed})
                          .value_or(0.0);
       rs.finish();
       s.stress = effect;
@@ -645,14 +699,15 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       Reader rc(*c, "effects.crack", problems);
       CrackEffect effect;
       if (const json* at = rc.find("at")) {
-        if (at->is_number() && std::isfinite(at->get<double>())) {
+        const Bound x = position("a position x");
+        if (at->is_number() && std::isfinite(at->get<double>()) && x.ok(at->get<double>())) {
           effect.at = "x";
           effect.x = at->get<double>();
         } else if (at->is_string() && (*at == "trailing_edge" || *at == "leading_edge")) {
           effect.at = at->get<std::string>();
         } else {
-          rc.problem("effects.crack.at", fmt::format("{} is not allowed; give \"trailing_edge\", \"leading_edge\" or "
-                                                     "a position x (m)", describe(*at)));
+          rc.problem("effects.crack.at", fmt::format("{} is not allowed; give \"trailing_edge\", \"leading_edge\" "
+                                                     "or {}", describe(*at), x.allowed));
         }
       }
       // Flatter cracks than CrackSpec::kMinAngle lie close to the surface over their whole length, where the
@@ -670,14 +725,16 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                   .value_or(60.0));
       const json* lengths = rc.find("lengths");
       if (!lengths) {
-        rc.problem("effects.crack.lengths", "missing; give an array of crack depths > 0 (m)");
+        rc.problem("effects.crack.lengths", "missing; give an array of crack lengths (m)");
       } else if (!lengths->is_array() || lengths->empty()) {
-        rc.problem("effects.crack.lengths", fmt::format("{} is not a non-empty array of crack depths (m)", describe(*lengths)));
+        rc.problem("effects.crack.lengths", fmt::format("{} is not a non-empty array of crack lengths (m)", describe(*lengths)));
       } else {
+        const Bound crack_length = length("a crack length");
         for (std::size_t k = 0; k < lengths->size(); ++k) {
           const json& l = (*lengths)[k];
-          if (!l.is_number() || !(l.get<double>() > 0.0) || !std::isfinite(l.get<double>())) {
-            rc.problem(fmt::format("effects.crack.lengths[{}]", k), fmt::format("{} is not a crack depth > 0 (m)", describe(l)));
+          if (!l.is_number() || !std::isfinite(l.get<double>()) || !crack_length.ok(l.get<double>())) {
+            rc.problem(fmt::format("effects.crack.lengths[{}]", k),
+                       fmt::format("{} is not allowed; give {}", describe(l), crack_length.allowed));
             break;
           }
           effect.lengths.push_back(l.get<double>());
@@ -746,7 +803,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     } else {
       if (!delta_given)
         problems.push_back("load.delta: missing; load.control \"displacement\" needs the amplitude of the relative "
-                           "tangential displacement of the reference points, a number in (0, 1) m");
+                           "tangential displacement of the reference points, " + displacement_amplitude().allowed);
       if (Q_given)
         problems.push_back("load.Q: given with load.control \"displacement\", where Q is the result; remove load.Q");
       if (s.tangential->route == TangentialRoute::analogy)

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -21,8 +23,27 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
   return s;
 }
 
+// Appends j to s as compact JSON, stopping once s is longer than limit: every level writes a character before it
+// descends, so however deep j nests, the recursion is at most limit deep.
+void write_short(const json& j, std::string& s, std::size_t limit) {
+  const auto scalar = [](const json& v) { return v.dump(-1, ' ', true, json::error_handler_t::replace); };
+  if (j.is_array() || j.is_object()) {
+    s += j.is_array() ? '[' : '{';
+    bool first = true;
+    for (auto it = j.begin(); it != j.end() && s.size() <= limit; ++it, first = false) {
+      if (!first) s += ',';
+      if (j.is_object()) s += scalar(json(it.key())) + ':';
+      write_short(*it, s, limit);
+    }
+    s += j.is_array() ? ']' : '}';
+  } else {
+    s += scalar(j);
+  }
+}
+
 std::string describe(const json& j) {
-  std::string s = j.dump(-1, ' ', true, json::error_handler_t::replace);
+  std::string s;
+  write_short(j, s, 60);
   if (s.size() > 60) s = s.substr(0, 57) + "...";
   return s;
 }
@@ -58,10 +79,44 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 struct Bound {
   std::function<bool(double)> ok;
-  std::string allowed;  // e.g. "> 0"
+  std::string allowed;  // e.g. "a radius in [1e-9, 100] m"
 };
-const Bound kPositive{[](double v) { return v > 0.0; }, "a number > 0"};
 const Bound kAny{[](double) { return true; }, "a finite number"};
+
+// v written short for a message: 1e-9, 1000, 1e12.
+std::string short_number(double v) {
+  const std::string s = fmt::format("{:g}", v);
+  const auto e = s.find('e');
+  if (e == std::string::npos) return s;
+  const bool negative = s[e + 1] == '-';
+  const std::string digits = s.substr(e + 2);  // "09" of 1e-09, "12" of 1e+12
+  const std::size_t first = std::min(digits.find_first_not_of('0'), digits.size() - 1);
+  return s.substr(0, e) + (negative ? "e-" : "e") + digits.substr(first);
+}
+
+// "[1e-9, 1000] m", or "[1e-9, 1) m" when hi_open.
+std::string interval(double lo, double hi, const std::string& unit, bool hi_open = false) {
+  return fmt::format("[{}, {}{}{}", short_number(lo), short_number(hi), hi_open ? ")" : "]",
+                     unit.empty() ? "" : " " + unit);
+}
+
+// A number in [lo, hi], or [lo, hi) when hi_open, named for the message: "a radius in [1e-9, 1000] m".
+Bound within(double lo, double hi, const std::string& what, const std::string& unit, bool hi_open = false) {
+  return {[=](double v) { return v >= lo && (hi_open ? v < hi : v <= hi); },
+          what + " in " + interval(lo, hi, unit, hi_open)};
+}
+// The spans of scene.hpp, for each kind of number.
+Bound length(const std::string& what) { return within(spans::kMinLength, spans::kMaxLength, what, "m"); }
+Bound position(const std::string& what = "a position") {
+  return within(-spans::kMaxPosition, spans::kMaxPosition, what, "m");
+}
+Bound stress(const std::string& what = "a stress") { return within(-spans::kMaxStress, spans::kMaxStress, what, "Pa"); }
+Bound normal_load() { return within(spans::kMinLoad, spans::kMaxLoad, "a normal load", "N/m"); }
+Bound tangential_load(double lo = -spans::kMaxLoad) { return within(lo, spans::kMaxLoad, "a tangential load", "N/m"); }
+Bound time_point() { return within(-spans::kMaxTime, spans::kMaxTime, "a time", "s"); }
+Bound displacement_amplitude() {
+  return within(spans::kMinLength, spans::kMaxDelta, "a displacement amplitude", "m", true);
+}
 
 // Collects problems while reading one JSON object; every read names the full JSON path.
 class Reader {
@@ -176,34 +231,34 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
     r.problem(r.at("type"), fmt::format("\"{}\" is not a profile type; use one of {}", *type, profile_type_words()));
     return s;
   }
-  s.offset_x = r.number("offset_x", 0.0).value_or(0.0);
+  s.offset_x = r.number("offset_x", 0.0, position()).value_or(0.0);
   s.tilt_rad = r.number("tilt_rad", 0.0, {[](double v) { return std::abs(v) < 1.0; }, "a number in (−1, 1) rad"})
                    .value_or(0.0);
   const Bound angle{[](double v) { return v > 0.0 && v < 90.0; }, "an angle in (0, 90) degrees"};
   switch (s.type) {
     case ProfileType::cylinder:
-      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      s.R = r.number("R", std::nullopt, length("a radius")).value_or(1.0);
       break;
     case ProfileType::flat_rounded:
-      s.a = r.number("a", std::nullopt, kPositive).value_or(1.0);
-      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      s.a = r.number("a", std::nullopt, length("a flat half-length")).value_or(1.0);
+      s.R = r.number("R", std::nullopt, length("a radius")).value_or(1.0);
       break;
     case ProfileType::flat:
-      s.b = r.number("b", std::nullopt, kPositive).value_or(1.0);
+      s.b = r.number("b", std::nullopt, length("a half-width")).value_or(1.0);
       break;
     case ProfileType::wedge:
       s.angle_deg = r.number("angle_deg", std::nullopt, angle).value_or(1.0);
       break;
     case ProfileType::rounded_wedge:
       s.angle_deg = r.number("angle_deg", std::nullopt, angle).value_or(1.0);
-      s.R = r.number("R", std::nullopt, kPositive).value_or(1.0);
+      s.R = r.number("R", std::nullopt, length("a radius")).value_or(1.0);
       break;
     case ProfileType::wavy:
-      s.amplitude = r.number("amplitude", std::nullopt, kPositive).value_or(1.0);
-      s.wavelength = r.number("wavelength", std::nullopt, kPositive).value_or(1.0);
+      s.amplitude = r.number("amplitude", std::nullopt, length("an amplitude")).value_or(1.0);
+      s.wavelength = r.number("wavelength", std::nullopt, length("a wavelength")).value_or(1.0);
       break;
     case ProfileType::table: {
-      auto read_array = [&](const std::string& key, std::vector<double>& out) {
+      auto read_array = [&](const std::string& key, const Bound& span, std::vector<double>& out) {
         const json* v = r.find(key);
         if (!v) return r.problem(r.at(key), "missing; give an array of at least two numbers (m)");
         if (!v->is_array())
@@ -212,11 +267,14 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
           const json& e = (*v)[i];
           if (!e.is_number() || !std::isfinite(e.get<double>()))
             return r.problem(fmt::format("{}[{}]", r.at(key), i), fmt::format("{} is not a finite number", describe(e)));
+          if (!span.ok(e.get<double>()))
+            return r.problem(fmt::format("{}[{}]", r.at(key), i),
+                             fmt::format("{} is not allowed; give {}", describe(e), span.allowed));
           out.push_back(e.get<double>());
         }
       };
-      read_array("x", s.x);
-      read_array("h", s.h);
+      read_array("x", position(), s.x);
+      read_array("h", position("a height"), s.h);
       if (r.find("x") && r.find("h") && (*r.find("x")).is_array() && (*r.find("h")).is_array()) {
         const auto nx = r.find("x")->size(), nh = r.find("h")->size();
         if (nx < 2) r.problem(r.at("x"), fmt::format("has {} point(s); a table needs at least two", nx));
@@ -260,7 +318,7 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
 Material parse_material(const json& j, const std::string& path, std::vector<std::string>& problems) {
   Reader r(j, path, problems);
   Material m;
-  m.E = r.number("E", std::nullopt, {[](double v) { return v > 0.0 && v < 1e15; }, "a Young's modulus > 0 Pa"})
+  m.E = r.number("E", std::nullopt, within(spans::kMinModulus, spans::kMaxModulus, "a Young's modulus", "Pa"))
             .value_or(1.0);
   m.nu = r.number("nu", std::nullopt,
                   {[](double v) { return v > -1.0 && v < 0.5; }, "a Poisson's ratio in (-1, 0.5)"})
@@ -349,26 +407,34 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     }
   }
 
+  const std::size_t n_problems_before_materials = problems.size();
   if (const json* m = top.object("materials", true)) {
     Reader r(*m, "materials", problems);
-    const json* both = r.object("both", false);
-    const json* pad = r.object("pad", false);
-    const json* spec = r.object("specimen", false);
+    // Which form is given is read from the keys; a member that is not an object is reported once, as such.
+    const bool both = r.find("both"), pad = r.find("pad"), spec = r.find("specimen");
+    const auto read = [&](const char* key, Material& into) {
+      if (const json* v = r.object(key, false)) into = parse_material(*v, std::string("materials.") + key, problems);
+    };
     if (both && (pad || spec)) {
       r.problem("materials", "give either \"both\" or \"pad\" and \"specimen\", not both forms");
     } else if (both) {
-      s.pad = s.specimen = parse_material(*both, "materials.both", problems);
+      read("both", s.pad);
+      s.specimen = s.pad;
     } else if (pad && spec) {
-      s.pad = parse_material(*pad, "materials.pad", problems);
-      s.specimen = parse_material(*spec, "materials.specimen", problems);
+      read("pad", s.pad);
+      read("specimen", s.specimen);
       s.similar = false;
-    } else if (!pad && !spec && m->is_object()) {
+    } else if (!pad && !spec) {
       r.problem("materials", "give \"both\" (similar bodies) or \"pad\" and \"specimen\"");
     } else {
+      read(pad ? "pad" : "specimen", pad ? s.pad : s.specimen);
       r.problem(pad ? "materials.specimen" : "materials.pad", "missing; give {\"E\": ..., \"nu\": ...}");
     }
     r.finish();
   }
+
+  // The coupling checks below need the moduli as given, not the placeholders of invalid ones.
+  const bool materials_ok = problems.size() == n_problems_before_materials;
 
   if (const json* p = top.find("profile")) {
     s.profile = parse_profile(*p, "profile", problems, 0);
@@ -376,47 +442,56 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
   }
 
-  const bool friction_given = top.find("friction") != nullptr;  // an invalid value is reported once, not as missing
+  // What the scene gives, valid or not: an invalid value is reported once, for what it is, and never again as
+  // missing (or as given where it is not used) by the checks of what the effects need.
+  const bool friction_given = top.find("friction") != nullptr;
   if (friction_given)
     s.friction = top.number("friction", std::nullopt,
                             {[](double v) { return v > 0.0 && v <= 10.0; }, "a friction coefficient in (0, 10]"});
 
-  bool history_given = false;  // even when invalid: then load.Q is not asked for
+  bool load_read = false;  // load is an object: the checks may ask for what it lacks
+  bool P_ok = false, Q_given = false, delta_given = false, history_given = false;
+  std::optional<LoadControl> control = LoadControl::force;  // nullopt: an invalid word
   if (const json* l = top.object("load", true)) {
     Reader r(*l, "load", problems);
-    s.P = r.number("P", std::nullopt, {[](double v) { return v > 0.0; }, "a normal load > 0 N/m"}).value_or(1.0);
+    load_read = true;
+    const auto P = r.number("P", std::nullopt, normal_load());
+    P_ok = P.has_value();
+    s.P = P.value_or(1.0);
+    Q_given = r.find("Q") != nullptr;
     if (const json* q = r.object("Q", false)) {
       Reader rq(*q, "load.Q", problems);
       const bool has_amplitude = q->contains("amplitude"), has_ratio = q->contains("ratio");
-      const Bound non_negative{[](double v) { return v >= 0.0; }, "a number >= 0"};
       if (has_amplitude == has_ratio) {
         rq.problem("load.Q", "give exactly one of \"amplitude\" (N/m) or \"ratio\" (Q/(fP))");
         rq.find("amplitude"), rq.find("ratio");
       } else if (has_amplitude) {
-        s.Q_amplitude = rq.number("amplitude", std::nullopt, non_negative);
+        s.Q_amplitude = rq.number("amplitude", std::nullopt, tangential_load(0.0));
       } else {
-        s.Q_ratio = rq.number("ratio", std::nullopt, non_negative);
+        s.Q_ratio = rq.number("ratio", std::nullopt, within(0.0, spans::kMaxLoadRatio, "a ratio Q/(fP)", ""));
       }
       rq.finish();
     }
     if (const json* b = r.object("bulk_stress", false)) {
       Reader rb(*b, "load.bulk_stress", problems);
-      s.bulk_stress = rb.number("amplitude", 0.0).value_or(0.0);
+      s.bulk_stress = rb.number("amplitude", 0.0, stress()).value_or(0.0);
       rb.finish();
     }
-    if (auto control = r.string("control", "force", "\"force\" or \"displacement\"")) {
-      if (*control == "force") {
-        s.control = LoadControl::force;
-      } else if (*control == "displacement") {
-        s.control = LoadControl::displacement;
-      } else {
-        r.problem("load.control",
-                  fmt::format("\"{}\" is not a load control; use \"force\" or \"displacement\"", *control));
-      }
+    const auto word = r.string("control", "force", "\"force\" or \"displacement\"");
+    if (!word) {
+      control.reset();
+    } else if (*word == "force") {
+      s.control = LoadControl::force;
+    } else if (*word == "displacement") {
+      s.control = LoadControl::displacement;
+    } else {
+      r.problem("load.control", fmt::format("\"{}\" is not a load control; use \"force\" or \"displacement\"", *word));
+      control.reset();
     }
-    if (r.find("delta"))
-      s.delta = r.number("delta", std::nullopt,
-                         {[](double v) { return v > 0.0 && v < 1.0; }, "a displacement amplitude in (0, 1) m"});
+    if (control) control = s.control;
+    delta_given = r.find("delta") != nullptr;
+    if (delta_given)
+      s.delta = r.number("delta", std::nullopt, displacement_amplitude());
     if (const json* hv = r.find("history")) {
       history_given = true;
       const std::string what = "give a list of at least two points [t, P, Q, sigma_bulk] (s, N/m, N/m, Pa)";
@@ -424,6 +499,8 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         r.problem("load.history", fmt::format("{} is not {}; {}", describe(*hv),
                                               hv->is_array() ? "long enough" : "a list", what));
       } else {
+        const std::array<std::pair<const char*, Bound>, 4> point_spans{
+            {{"t", time_point()}, {"P", normal_load()}, {"Q", tangential_load()}, {"sigma_bulk", stress()}}};
         for (std::size_t i = 0; i < hv->size(); ++i) {
           const json& pt = (*hv)[i];
           const std::string at = fmt::format("load.history[{}]", i);
@@ -437,8 +514,13 @@ Scene parse_scene(const json& j, const std::string& default_name) {
           }
           const std::array<double, 4> v{pt[0].get<double>(), pt[1].get<double>(), pt[2].get<double>(),
                                         pt[3].get<double>()};
-          if (!(v[1] > 0.0)) {
-            r.problem(at, fmt::format("P = {} is not allowed; give a normal load > 0 N/m", v[1]));
+          std::optional<std::string> wrong;
+          for (std::size_t k = 0; k < v.size() && !wrong; ++k)
+            if (!point_spans[k].second.ok(v[k]))
+              wrong = fmt::format("{} = {} is not allowed; give {}", point_spans[k].first, v[k],
+                                  point_spans[k].second.allowed);
+          if (wrong) {
+            r.problem(at, *wrong);
             s.history.clear();
             break;
           }
@@ -466,7 +548,10 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     r.finish();
   }
 
+  // A window given, valid or not, or a grid that is not an object: a missing window is not asked for.
+  bool window_given = top.find("grid") != nullptr, reference_depth_given = false;
   if (const json* g = top.object("grid", false)) {
+    window_given = g->contains("window");
     Reader r(*g, "grid", problems);
     if (const json* c = r.find("cells")) {
       const bool whole = c->is_number_integer() || (c->is_number_float() && std::isfinite(c->get<double>()) &&
@@ -484,19 +569,32 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     if (const json* w = r.find("window")) {
       if (!w->is_array() || w->size() != 2 || !(*w)[0].is_number() || !(*w)[1].is_number()) {
         r.problem("grid.window", fmt::format("{} is not [x_min, x_max]; give two numbers (m)", describe(*w)));
-      } else if (!((*w)[0].get<double>() < (*w)[1].get<double>()) || !std::isfinite((*w)[0].get<double>()) ||
-                 !std::isfinite((*w)[1].get<double>())) {
+      } else if (const double lo = (*w)[0].get<double>(), hi = (*w)[1].get<double>();
+                 !(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi)) {
         r.problem("grid.window", fmt::format("{} is empty; give [x_min, x_max] with x_min < x_max (m)", describe(*w)));
+      } else if (const Bound end = position(); !end.ok(lo) || !end.ok(hi)) {
+        for (std::size_t i : {0u, 1u})
+          if (!end.ok((*w)[i].get<double>()))
+            r.problem(fmt::format("grid.window[{}]", i),
+                      fmt::format("{} is not allowed; give {}", describe((*w)[i]), end.allowed));
+      } else if (hi - lo < spans::kMinLength) {
+        r.problem("grid.window", fmt::format("{} is narrower than {} m; give [x_min, x_max] with x_max - x_min >= {} m",
+                                             describe(*w), short_number(spans::kMinLength),
+                                             short_number(spans::kMinLength)));
       } else {
-        s.window = std::pair((*w)[0].get<double>(), (*w)[1].get<double>());
+        s.window = std::pair(lo, hi);
       }
     }
-    if (r.find("reference_depth"))
+    reference_depth_given = r.find("reference_depth") != nullptr;
+    if (reference_depth_given)
       s.reference_depth = r.number("reference_depth", std::nullopt,
-                                   {[](double v) { return v > 0.0; }, "a depth > 0 m below the contact centre"});
+                                   {length("a depth").ok, "a depth > 0 m below the contact centre, in " +
+                                                              interval(spans::kMinLength, spans::kMaxLength, "m")});
     r.finish();
   }
 
+  // Effects given but not readable: which ones the scene asks for is unknown, and so is what they need.
+  const bool effects_unknown = top.find("effects") && !top.find("effects")->is_object();
   if (const json* e = top.object("effects", false)) {
     Reader r(*e, "effects", problems);
     if (const json* t = r.object("tangential", false)) {
@@ -519,18 +617,23 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                   .value_or(40.0));
       rt.finish();
       s.tangential = effect;
+    } else if (r.find("tangential")) {
+      s.tangential = TangentialEffect{};  // asked for, though not readable: the checks of what it needs still apply
     }
     if (const json* w = r.object("wear", false)) {
       Reader rw(*w, "effects.wear", problems);
       WearEffect effect;
-      effect.law = rw.string("law", "archard", "\"archard\" or \"energy\"").value_or("archard");
+      const auto law = rw.string("law", "archard", "\"archard\" or \"energy\"");
+      effect.law = law.value_or("");
       if (effect.law != "archard" && effect.law != "energy") {
-        rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
+        if (law)
+          rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
+        rw.find("k"), rw.find("alpha");  // which of them belongs is unknown until the law is: not unknown keys
       } else {
         const char* key = effect.law == "archard" ? "k" : "alpha";
         const char* other = effect.law == "archard" ? "alpha" : "k";
-        effect.coefficient = rw.number(key, std::nullopt, {[](double v) { return v > 0.0 && v < 1.0; },
-                                                           "a wear coefficient in (0, 1) 1/Pa"})
+        effect.coefficient = rw.number(key, std::nullopt, within(spans::kMinWearCoefficient, spans::kMaxWearCoefficient,
+                                                                  "a wear coefficient", "1/Pa", true))
                                  .value_or(1e-15);
         if (w->contains(other)) {
           rw.find(other);
@@ -541,9 +644,9 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
                                                             "a share in [0, 1]"})
                                 .value_or(0.5);
-      effect.cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
-                                                         "a whole number of cycles from 1 to 1e12"})
-                          .value_or(1.0);
+      const auto cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
+                                                             "a whole number of cycles from 1 to 1e12"});
+      effect.cycles = cycles.value_or(1e12);  // records are checked against the cycles only when they are valid
       effect.stepper = rw.string("stepper", "implicit", "\"implicit\", \"explicit\" or \"cycle_by_cycle\"").value_or("implicit");
       if (effect.stepper != "implicit" && effect.stepper != "explicit" && effect.stepper != "cycle_by_cycle")
         rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not a stepper; use \"implicit\", \"explicit\" or "
@@ -574,10 +677,10 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       }
       rw.finish();
       s.wear = effect;
-      if (!s.tangential) {
-        s.tangential = TangentialEffect{};
-        s.tangential_implied = true;
-      }
+    }
+    if (r.find("wear") && !s.tangential) {
+      s.tangential = TangentialEffect{};
+      s.tangential_implied = true;
     }
     if (const json* st = r.object("stress", false)) {
       Reader rs(*st, "effects.stress", problems);
@@ -585,7 +688,9 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       const Bound points{[](double v) { return v >= 3 && v <= 2001 && v == std::floor(v); }, "a whole number from 3 to 2001"};
       effect.nx = int(rs.number("nx", 161.0, points).value_or(161.0));
       effect.ny = int(rs.number("ny", 81.0, points).value_or(81.0));
-      effect.depth = rs.number("depth", 0.0, {[](double v) { return v >= 0.0; }, "a depth >= 0 m (0: the contact half-width)"})
+      const Bound depth = length("a depth");
+      effect.depth = rs.number("depth", 0.0, {[depth](double v) { return v == 0.0 || depth.ok(v); },
+                                              "0 (the contact half-width) or " + depth.allowed})
                          .value_or(0.0);
       rs.finish();
       s.stress = effect;
@@ -594,14 +699,15 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       Reader rc(*c, "effects.crack", problems);
       CrackEffect effect;
       if (const json* at = rc.find("at")) {
-        if (at->is_number() && std::isfinite(at->get<double>())) {
+        const Bound x = position("a position x");
+        if (at->is_number() && std::isfinite(at->get<double>()) && x.ok(at->get<double>())) {
           effect.at = "x";
           effect.x = at->get<double>();
         } else if (at->is_string() && (*at == "trailing_edge" || *at == "leading_edge")) {
           effect.at = at->get<std::string>();
         } else {
-          rc.problem("effects.crack.at", fmt::format("{} is not allowed; give \"trailing_edge\", \"leading_edge\" or "
-                                                     "a position x (m)", describe(*at)));
+          rc.problem("effects.crack.at", fmt::format("{} is not allowed; give \"trailing_edge\", \"leading_edge\" "
+                                                     "or {}", describe(*at), x.allowed));
         }
       }
       // Flatter cracks than CrackSpec::kMinAngle lie close to the surface over their whole length, where the
@@ -619,14 +725,16 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                   .value_or(60.0));
       const json* lengths = rc.find("lengths");
       if (!lengths) {
-        rc.problem("effects.crack.lengths", "missing; give an array of crack depths > 0 (m)");
+        rc.problem("effects.crack.lengths", "missing; give an array of crack lengths (m)");
       } else if (!lengths->is_array() || lengths->empty()) {
-        rc.problem("effects.crack.lengths", fmt::format("{} is not a non-empty array of crack depths (m)", describe(*lengths)));
+        rc.problem("effects.crack.lengths", fmt::format("{} is not a non-empty array of crack lengths (m)", describe(*lengths)));
       } else {
+        const Bound crack_length = length("a crack length");
         for (std::size_t k = 0; k < lengths->size(); ++k) {
           const json& l = (*lengths)[k];
-          if (!l.is_number() || !(l.get<double>() > 0.0) || !std::isfinite(l.get<double>())) {
-            rc.problem(fmt::format("effects.crack.lengths[{}]", k), fmt::format("{} is not a crack depth > 0 (m)", describe(l)));
+          if (!l.is_number() || !std::isfinite(l.get<double>()) || !crack_length.ok(l.get<double>())) {
+            rc.problem(fmt::format("effects.crack.lengths[{}]", k),
+                       fmt::format("{} is not allowed; give {}", describe(l), crack_length.allowed));
             break;
           }
           effect.lengths.push_back(l.get<double>());
@@ -640,10 +748,11 @@ Scene parse_scene(const json& j, const std::string& default_name) {
 
   if (const json* o = top.object("output", false)) {
     Reader r(*o, "output", problems);
-    if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
-      if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
-      s.output_dir = *dir;
-    }
+    if (r.find("dir"))  // optional: output/<name> below
+      if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
+        if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
+        s.output_dir = *dir;
+      }
     s.plots = r.boolean("plots", true).value_or(true);
     r.finish();
   }
@@ -652,17 +761,19 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   top.finish();
 
   // What the effects need.
-  if (s.tangential) {
+  if (effects_unknown) {
+    // reported above; what the effects need is checked once they are readable
+  } else if (s.tangential) {
     const char* who = s.tangential_implied ? "effects.wear (through the load cycle it needs)" : "effects.tangential";
     if (!friction_given)
       problems.push_back(fmt::format("friction: missing; {} needs a friction coefficient in (0, 10]", who));
-    if (!s.history.empty()) {
-      if (s.Q_amplitude || s.Q_ratio)
+    if (history_given) {
+      if (Q_given)
         problems.push_back("load.Q: given with load.history, which gives Q at each point; remove load.Q");
       if (s.bulk_stress != 0.0)
         problems.push_back(
             "load.bulk_stress: given with load.history, which gives sigma_bulk at each point; remove it");
-      if (s.control != LoadControl::force)
+      if (control == LoadControl::displacement)
         problems.push_back("load.history: its points give Q; with load.control \"displacement\" it is not supported "
                            "yet; use load.control \"force\"");
       if (s.tangential->route == TangentialRoute::analogy)
@@ -675,23 +786,25 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       if (s.stress || s.crack)
         problems.push_back("effects.stress, effects.crack: their top and bottom phases assume the in-phase cycle of "
                            "load.Q; with load.history they are not supported yet");
-    } else if (s.control == LoadControl::force) {
-      if (!s.Q_amplitude && !s.Q_ratio && !history_given)
+    } else if (!control || !load_read) {
+      // the load control is unknown, or so is the whole load: nothing more to ask for
+    } else if (control == LoadControl::force) {
+      if (!Q_given)
         problems.push_back(fmt::format("load.Q: missing; {} needs {{\"amplitude\": Q (N/m)}} or {{\"ratio\": Q/(fP)}}",
                                        who));
-      if (s.delta)
+      if (delta_given)
         problems.push_back("load.delta: given, but load.control is \"force\"; set load.control to \"displacement\" "
                            "or remove load.delta");
-      if (s.wear && s.friction && s.P > 0.0 && s.Q_max() >= *s.friction * s.P)
+      if (s.wear && s.friction && P_ok && s.Q_max() >= *s.friction * s.P)
         problems.push_back(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
                                        "under force control the slip, hence the wear, is not determined; prescribe "
                                        "the displacement instead (load.control \"displacement\" with load.delta)",
                                        s.Q_max(), *s.friction * s.P));
     } else {
-      if (!s.delta)
+      if (!delta_given)
         problems.push_back("load.delta: missing; load.control \"displacement\" needs the amplitude of the relative "
-                           "tangential displacement of the reference points, a number in (0, 1) m");
-      if (s.Q_amplitude || s.Q_ratio)
+                           "tangential displacement of the reference points, " + displacement_amplitude().allowed);
+      if (Q_given)
         problems.push_back("load.Q: given with load.control \"displacement\", where Q is the result; remove load.Q");
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.control \"displacement\" (the "
@@ -699,14 +812,14 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     }
     const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
     // Dissimilar bodies: the incremental route couples the normal and tangential problems under force control.
-    if (std::abs(pair.beta()) > 1e-12) {
+    if (materials_ok && std::abs(pair.beta()) > 1e-12) {
       const std::string dissimilar = fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the "
                                                  "normal and tangential problems",
                                                  pair.beta());
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (s.control == LoadControl::displacement || history_given)
+      if (control == LoadControl::displacement || history_given)
         problems.push_back(dissimilar + "; the incremental route solves them under force control with Q between "
                                         "fixed limits, and load.control \"displacement\" or load.history with beta "
                                         "!= 0 is not supported yet");
@@ -716,17 +829,18 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                         "supported yet");
     }
   } else {
-    if (s.Q_amplitude || s.Q_ratio)
+    if (Q_given)
       problems.push_back("load.Q: given, but no effect uses it; add \"tangential\": {} to effects or remove load.Q");
     if (s.bulk_stress != 0.0)
       problems.push_back("load.bulk_stress: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (s.friction) problems.push_back("friction: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (!s.history.empty())
+    if (friction_given)
+      problems.push_back("friction: given, but no effect uses it; add \"tangential\": {} to effects");
+    if (history_given)
       problems.push_back("load.history: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (s.control != LoadControl::force || s.delta)
+    if (control != LoadControl::force || delta_given)
       problems.push_back("load.control, load.delta: given, but no effect uses them; add \"tangential\": {} to "
                          "effects");
-    if (s.reference_depth)
+    if (reference_depth_given)
       problems.push_back("grid.reference_depth: given, but no effect uses it (the displacement datum serves the load "
                          "cycle); add \"tangential\": {} to effects");
   }
@@ -742,7 +856,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         if (x < s.window->first || x > s.window->second)
           problems.push_back(fmt::format("grid.window: [{}, {}] does not contain the profile's lowest point x = {} m",
                                          s.window->first, s.window->second, x));
-      } else if (profile.periodic()) {
+      } else if (profile.periodic() && !window_given) {
         problems.push_back("grid.window: missing; a profile whose lowest point repeats (a lone waviness) needs "
                            "[x_min, x_max] (m)");
       }
@@ -752,6 +866,224 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   }
   if (!problems.empty()) throw SceneError(std::move(problems));
   return s;
+}
+
+namespace {
+
+// An iterator over a scene's text that counts the characters the JSON parser has read, so that the SAX events, which
+// carry no position, can name their line.
+class CountingIterator {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  CountingIterator(const char* at, std::size_t* n_read) : at_(at), n_read_(n_read) {}
+  reference operator*() const { return *at_; }
+  CountingIterator& operator++() {
+    ++at_;
+    ++*n_read_;
+    return *this;
+  }
+  CountingIterator operator++(int) {
+    CountingIterator before = *this;
+    ++*this;
+    return before;
+  }
+  bool operator==(const CountingIterator& other) const { return at_ == other.at_; }
+
+ private:
+  const char* at_;
+  std::size_t* n_read_;
+};
+
+// Builds the document from nlohmann's SAX events, as its json_sax_dom_parser does, and keeps what a document
+// forgets: the JSON path of each value and the line of each key. A key given twice in an object, a number that
+// overflows a double and nesting deeper than kMaxSceneDepth become problems naming the path and the line; a syntax
+// error becomes one naming the source, with nlohmann's line and column. The work stays linear in the text: a path
+// is kept as its parts and written out only for a problem.
+class SceneText {
+ public:
+  SceneText(std::string_view text, std::string source, json& root)
+      : text_(text), source_(std::move(source)), root_(root) {}
+
+  CountingIterator begin() { return {text_.data(), &n_read_}; }
+  CountingIterator end() { return {text_.data() + text_.size(), &n_read_}; }
+
+  // The problems of the text: the keys given more than once (in the order of their second line), then what stopped
+  // the parser, if anything did.
+  std::vector<std::string> problems() {
+    std::stable_sort(duplicates_.begin(), duplicates_.end(),
+                     [](const Duplicate& a, const Duplicate& b) { return a.lines[1] < b.lines[1]; });
+    std::vector<std::string> out;
+    for (const auto& d : duplicates_) {
+      std::string lines;
+      for (std::size_t i = 0; i < d.lines.size(); ++i)
+        lines += (i == 0 ? "" : i + 1 == d.lines.size() ? " and " : ", ") + std::to_string(d.lines[i]);
+      const std::string times = d.lines.size() == 2 ? "twice" : fmt::format("{} times", d.lines.size());
+      out.push_back(fmt::format("{}: given {} (lines {}); give each key once", d.path, times, lines));
+    }
+    if (n_duplicates_ > duplicates_.size())
+      out.push_back(fmt::format("(top): {} more keys are given more than once; give each key once",
+                                n_duplicates_ - duplicates_.size()));
+    if (stop_) out.push_back(*stop_);
+    return out;
+  }
+
+  // The SAX events (nlohmann/detail/input/json_sax.hpp).
+  bool null() { return value(nullptr); }
+  bool boolean(bool v) { return value(v); }
+  bool number_integer(json::number_integer_t v) { return value(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return value(v); }
+  bool number_float(json::number_float_t v, const json::string_t&) { return value(v); }
+  bool string(json::string_t& v) { return value(std::move(v)); }
+  bool binary(json::binary_t& v) { return value(std::move(v)); }
+  bool start_object(std::size_t) { return open(json::value_t::object); }
+  bool start_array(std::size_t) { return open(json::value_t::array); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(json::string_t& k) {
+    Frame& f = frames_.back();
+    f.lines[k].push_back(line_at(n_read_));  // the parser has just read the key's closing quote
+    f.key = k;
+    element_ = &(*f.value)[k];  // a key given again replaces the value; the duplicate is a problem
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception& e) {
+    if (e.id == 406) {  // out_of_range.406: the number overflows a double
+      stop_ = fmt::format("{}: {} on line {} overflows a double; give a number between -1.8e308 and 1.8e308 (and "
+                          "within the key's range)",
+                          path(frames_.size(), next_part()), shortened(token), line_at(position));
+    } else {
+      stop_ = fmt::format("{}: not valid JSON (UTF-8): {}", source_, e.what());
+    }
+    close_all();
+    return false;
+  }
+
+ private:
+  struct Frame {
+    json* value;                                            // the object or array being filled
+    std::string part;                                       // its part of the path: "key", ".key" or "[i]"
+    std::string key;                                        // an object's latest key
+    std::map<std::string, std::vector<std::size_t>> lines;  // an object's keys, each with the lines it is on
+  };
+  struct Duplicate {
+    std::string path;
+    std::vector<std::size_t> lines;
+  };
+  static constexpr std::size_t kMaxDuplicatesNamed = 100;
+
+  static std::string shortened(const std::string& s) { return s.size() > 40 ? s.substr(0, 37) + "..." : s; }
+
+  // The part of the path that names the value the parser reads next.
+  std::string next_part() const {
+    if (frames_.empty()) return "";
+    const Frame& f = frames_.back();
+    if (f.value->is_array()) return fmt::format("[{}]", f.value->size());
+    return (frames_.size() == 1 ? "" : ".") + shortened(f.key);
+  }
+
+  // The JSON path of the first n open frames followed by last; "(top)" when empty.
+  std::string path(std::size_t n, const std::string& last) const {
+    std::string p;
+    for (std::size_t i = 0; i < n; ++i) p += frames_[i].part;
+    p += last;
+    return p.empty() ? "(top)" : p;
+  }
+
+  // The line (from 1) of the character before offset.
+  std::size_t line_at(std::size_t offset) {
+    offset = std::min(offset, text_.size());
+    if (offset >= counted_to_)
+      n_newlines_ += std::size_t(std::count(text_.begin() + counted_to_, text_.begin() + offset, '\n'));
+    else
+      n_newlines_ -= std::size_t(std::count(text_.begin() + offset, text_.begin() + counted_to_, '\n'));
+    counted_to_ = offset;
+    return n_newlines_ + 1;
+  }
+
+  template <typename Value>
+  json* place(Value&& v) {
+    if (frames_.empty()) {
+      root_ = json(std::forward<Value>(v));
+      return &root_;
+    }
+    json& container = *frames_.back().value;
+    if (container.is_array()) {
+      container.push_back(json(std::forward<Value>(v)));
+      return &container.back();
+    }
+    *element_ = json(std::forward<Value>(v));
+    return element_;
+  }
+
+  template <typename Value>
+  bool value(Value&& v) {
+    place(std::forward<Value>(v));
+    return true;
+  }
+
+  bool open(json::value_t type) {
+    std::string part = next_part();
+    if (frames_.size() >= kMaxSceneDepth) {
+      stop_ = fmt::format("{}: nests deeper than {} objects and arrays (line {}); a scene needs far fewer levels",
+                          path(frames_.size(), part), kMaxSceneDepth, line_at(n_read_));
+      close_all();
+      return false;
+    }
+    json* v = place(type);
+    frames_.push_back({v, std::move(part), {}, {}});
+    return true;
+  }
+
+  bool close() {
+    const Frame& f = frames_.back();
+    for (const auto& [k, lines] : f.lines) {
+      if (lines.size() < 2) continue;
+      if (++n_duplicates_ <= kMaxDuplicatesNamed)
+        duplicates_.push_back({path(frames_.size(), (frames_.size() == 1 ? "" : ".") + shortened(k)), lines});
+    }
+    frames_.pop_back();
+    return true;
+  }
+
+  // Reports the duplicates of the objects still open when the parser stops.
+  void close_all() {
+    while (!frames_.empty()) close();
+  }
+
+  std::string_view text_;
+  std::string source_;
+  json& root_;
+  std::size_t n_read_ = 0;                       // characters the parser has read
+  std::size_t counted_to_ = 0, n_newlines_ = 0;  // newlines in text_[0, counted_to_)
+  std::vector<Frame> frames_;                    // the open objects and arrays, outermost first
+  json* element_ = nullptr;                      // where an object's next value goes
+  std::vector<Duplicate> duplicates_;            // the first kMaxDuplicatesNamed
+  std::size_t n_duplicates_ = 0;
+  std::optional<std::string> stop_;              // what stopped the parser
+};
+
+}  // namespace
+
+Scene parse_scene_text(std::string_view text, const std::string& default_name, const std::string& source) {
+  json j;
+  SceneText reader(text, source, j);
+  const bool complete = json::sax_parse(reader.begin(), reader.end(), &reader);
+  std::vector<std::string> problems = reader.problems();
+  if (!complete) throw SceneError(std::move(problems));
+  try {
+    Scene s = parse_scene(j, default_name);
+    if (problems.empty()) return s;
+  } catch (const SceneError& e) {
+    problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+  }
+  throw SceneError(std::move(problems));
 }
 
 Scene load_scene(const std::filesystem::path& path) {
@@ -768,13 +1100,7 @@ Scene load_scene(const std::filesystem::path& path) {
   if (!in) throw SceneError({path.string() + ": cannot be opened for reading"});
   std::stringstream buf;
   buf << in.rdbuf();
-  json j;
-  try {
-    j = json::parse(buf.str());
-  } catch (const json::parse_error& e) {
-    throw SceneError({fmt::format("{}: not valid JSON (UTF-8): {}", path.string(), e.what())});
-  }
-  return parse_scene(j, path.stem().string());
+  return parse_scene_text(buf.str(), path.stem().string(), path.string());
 }
 
 json Scene::to_json() const {

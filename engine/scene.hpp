@@ -3,9 +3,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -90,15 +93,59 @@ struct Scene {
   nlohmann::json to_json() const;
 };
 
-// The largest scene file read, and the grid sizes accepted.
+// The largest scene file read, the deepest nesting of its objects and arrays (a scene needs about 20: profiles
+// nest 8 levels, two each), and the grid sizes accepted.
 constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;
+constexpr std::size_t kMaxSceneDepth = 64;
 constexpr int kMinCells = 16;
 constexpr int kMaxCells = 1 << 20;
 
+// The spans a scene's dimensional numbers must lie in (SCENES.md, "Ranges"; docs/scene.schema.json states the same
+// bounds). They refuse magnitudes no contact has, which the solvers would otherwise carry into overflow, denormals
+// or numbers without a digit left (a window of ±1e200 m crashed, a radius of 1e-308 m gave a slip of 1e205 m), and
+// leave room for every contact that plane linear elasticity describes.
+namespace spans {
+// Lengths (radii, half-widths, amplitudes, wavelengths, depths, crack lengths), m: from 1 nm, a few atomic spacings,
+// below which a continuum is no model of the bodies, to 100 m, beyond any body whose contact is still plane (a
+// wheel on a rail: 0.5 m). Not 1 km: Profile looks for the lowest point within some 400 m of a profile's centre, and
+// a flat or a table wider than that would be refused there, with a message about tilt.
+constexpr double kMinLength = 1e-9;
+constexpr double kMaxLength = 100.0;
+// Positions (profile offsets, table points and heights, window ends, a crack's x), m: no farther from the origin
+// than the largest length. A window's ends are at least kMinLength apart.
+constexpr double kMaxPosition = kMaxLength;
+// The displacement amplitude δ, m: from kMinLength up to (not including) 1 m, the cycle of a fretting contact, not
+// a sliding one.
+constexpr double kMaxDelta = 1.0;
+// Young's moduli, Pa: from 1 kPa (the softest gels) to 1e13 Pa, ten times diamond's (about 1.1e12 Pa). No denormals.
+constexpr double kMinModulus = 1e3;
+constexpr double kMaxModulus = 1e13;
+// Stresses (load.bulk_stress, a history's sigma_bulk), Pa: |σ| up to 1e12 Pa, about diamond's modulus. Linear
+// elasticity needs strains well below one, so a stress of the order of E is already beyond its reach.
+constexpr double kMaxStress = 1e12;
+// Loads per unit length of contact (P, Q, a history's P and Q), N/m: P from 1 µN on a metre of contact; up to 1e12
+// N/m, kMaxStress over a contact 1 m wide.
+constexpr double kMinLoad = 1e-6;
+constexpr double kMaxLoad = 1e12;
+// load.Q.ratio = Q/(fP): from 1 on the bodies slide and Q saturates at fP; 100 leaves room for any study of it.
+constexpr double kMaxLoadRatio = 100.0;
+// The times of a load history, s: |t| up to 1e9 s (some 30 years for a cycle).
+constexpr double kMaxTime = 1e9;
+// Wear coefficients (Archard k, energy alpha), 1/Pa: from 1e-30, far below any measured one (about 1e-20 to
+// 1e-12), up to (not including) 1.
+constexpr double kMinWearCoefficient = 1e-30;
+constexpr double kMaxWearCoefficient = 1.0;
+}  // namespace spans
+
 // Validates j as a scene; throws SceneError listing every problem. default_name names a scene without "name".
 Scene parse_scene(const nlohmann::json& j, const std::string& default_name = "scene");
-// Reads and parses a scene file; file problems (missing, a directory, too large, not JSON, not UTF-8) are
-// SceneErrors too.
+// Reads the JSON text of a scene and validates it (parse_scene). Problems of the text are SceneErrors naming the
+// JSON path and the line, listed before parse_scene's: a key given twice in an object, a number that overflows a
+// double, nesting deeper than kMaxSceneDepth; and text that is not JSON (UTF-8), named by source. Only a key given
+// twice lets parse_scene run as well; the others stop the reading. Throws nothing but SceneError (and bad_alloc).
+Scene parse_scene_text(std::string_view text, const std::string& default_name = "scene",
+                       const std::string& source = "the scene");
+// Reads a scene file and parses its text; file problems (missing, a directory, too large) are SceneErrors too.
 Scene load_scene(const std::filesystem::path& path);
 // The default scene, as `fretwear defaults` prints it.
 nlohmann::json default_scene_json();

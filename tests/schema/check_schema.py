@@ -91,6 +91,13 @@ bad = {
                         effects={"tangential": {}}),
     "wrong law key": dict(base, friction=0.5, load={"P": 1e5, "Q": {"ratio": 0.5}},
                           effects={"wear": {"law": "energy", "k": 1e-12, "cycles": 10}}),
+    "radius below 1 nm": dict(base, profile={"type": "cylinder", "R": 1e-10}),
+    "window end beyond 100 m": dict(base, grid={"window": [-1e200, 1e200]}),
+    "denormal modulus": dict(base, materials={"both": {"E": 1e-310, "nu": 0.3}}),
+    "normal load above 1e12 N/m": dict(base, load={"P": 1e13}),
+    "history stress above 1e12 Pa": dict(base, friction=0.5, effects={"tangential": {}},
+                                          load={"P": 1e5, "history": [[0, 1e5, 0, 0], [1, 1e5, 1e4, 2e12],
+                                                                      [2, 1e5, 0, 0]]}),
 }
 tmp = os.environ.get("TMPDIR", "/tmp")
 for label, scene in bad.items():

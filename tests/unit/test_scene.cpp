@@ -1,5 +1,7 @@
 // Scene parsing: defaults, the resolved scene, and one test per kind of error, each naming its JSON path and what is
 // allowed, all problems reported at once.
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include <doctest/doctest.h>
@@ -39,6 +41,29 @@ bool reports(const json& j, const std::string& path, std::initializer_list<std::
     if (all) return true;
   }
   return false;
+}
+
+// The problems parse_scene_text reports for text (empty when it is valid).
+std::vector<std::string> text_problems(const std::string& text) {
+  try {
+    parse_scene_text(text, "s");
+  } catch (const SceneError& e) {
+    return e.problems();
+  }
+  return {};
+}
+
+// good() written one key a line; extra is put in "load" after P (P on line 7, extra from line 8).
+std::string good_text(const std::string& extra = "") {
+  return "{\n"
+         "\"name\": \"s\",\n"
+         "\"materials\": {\"both\": {\"E\": 2e11, \"nu\": 0.3}},\n"
+         "\"profile\": {\"type\": \"cylinder\", \"R\": 0.01},\n"
+         "\"load\": {\n"
+         "\n"
+         "  \"P\": 1e5" + extra + "\n"
+         "}\n"
+         "}\n";
 }
 
 }  // namespace
@@ -83,7 +108,7 @@ TEST_CASE("missing keys") {
   j["profile"].erase("R");
   CHECK(reports(j, "load", {"missing"}));
   CHECK(reports(j, "materials.both.E", {"missing"}));
-  CHECK(reports(j, "profile.R", {"missing", "> 0"}));
+  CHECK(reports(j, "profile.R", {"missing", "a radius in [1e-9, 100] m"}));
 }
 
 TEST_CASE("wrong types") {
@@ -92,7 +117,7 @@ TEST_CASE("wrong types") {
   j["profile"]["R"] = json::array({1});
   j["materials"] = 3;
   j["output"] = {{"plots", "yes"}};
-  CHECK(reports(j, "load.P", {"a string", "> 0"}));
+  CHECK(reports(j, "load.P", {"a string", "a normal load in"}));
   CHECK(reports(j, "profile.R", {"an array"}));
   CHECK(reports(j, "materials", {"a number", "object"}));
   CHECK(reports(j, "output.plots", {"true or false"}));
@@ -104,10 +129,10 @@ TEST_CASE("impossible physics: E ≤ 0, ν outside (−1, 0.5), P ≤ 0, R ≤ 0
   j["materials"] = {{"pad", {{"E", 0}, {"nu", 0.3}}}, {"specimen", {{"E", 2e11}, {"nu", 0.5}}}};
   j["load"]["P"] = -1;
   j["profile"]["R"] = 0;
-  CHECK(reports(j, "materials.pad.E", {"> 0"}));
+  CHECK(reports(j, "materials.pad.E", {"a Young's modulus in [1000, 1e13] Pa"}));
   CHECK(reports(j, "materials.specimen.nu", {"(-1, 0.5)"}));
-  CHECK(reports(j, "load.P", {"> 0"}));
-  CHECK(reports(j, "profile.R", {"> 0"}));
+  CHECK(reports(j, "load.P", {"a normal load in [1e-6, 1e12] N/m"}));
+  CHECK(reports(j, "profile.R", {"a radius in [1e-9, 100] m"}));
   CHECK(problems(j).size() == 4);  // every problem at once
 }
 
@@ -143,7 +168,7 @@ TEST_CASE("nested profiles report the path of the term") {
   json j = good();
   j["profile"] = {{"type", "sum"},
                   {"terms", {{{"type", "cylinder"}, {"R", 0.01}}, {{"type", "wavy"}, {"amplitude", -1}}}}};
-  CHECK(reports(j, "profile.terms[1].amplitude", {"> 0"}));
+  CHECK(reports(j, "profile.terms[1].amplitude", {"an amplitude in [1e-9, 100] m"}));
   CHECK(reports(j, "profile.terms[1].wavelength", {"missing"}));
   j["profile"] = {{"type", "envelope"}, {"terms", json::array()}};
   CHECK(reports(j, "profile.terms", {"non-empty"}));
@@ -202,7 +227,7 @@ TEST_CASE("the tangential effect: friction, and Q as exactly one of amplitude or
   CHECK(reports(j, "load.Q", {"exactly one"}));
   j["friction"] = 0.5;
   j["load"]["Q"] = {{"ratio", -0.5}};
-  CHECK(reports(j, "load.Q.ratio", {">= 0"}));
+  CHECK(reports(j, "load.Q.ratio", {"a ratio Q/(fP) in [0, 100]"}));
   j["load"]["Q"] = {{"ratio", 0.5}};
   j["effects"]["tangential"] = {{"route", "analogie"}, {"increments", 2}};
   CHECK(reports(j, "effects.tangential.route", {"auto", "analogy"}));
@@ -269,4 +294,252 @@ TEST_CASE("names must make a folder name") {
   json j = good();
   j["name"] = "../escape";
   CHECK(reports(j, "name", {"folder"}));
+}
+
+TEST_CASE("the text of a scene: a valid one parses as its document does") {
+  CHECK(text_problems(good_text()).empty());
+  CHECK(parse_scene_text(good_text()).to_json() == parse_scene(json::parse(good_text()), "scene").to_json());
+}
+
+TEST_CASE("a number that overflows a double names its key's path and line, never an internal error") {
+  std::vector<std::string> p = text_problems(good_text(",\n  \"Q\": {\"amplitude\": 1e309}"));
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].rfind("load.Q.amplitude: 1e309 on line 8 overflows a double", 0) == 0);
+  CHECK(p[0].find("1.8e308") != std::string::npos);
+  p = text_problems("{\"profile\": {\"type\": \"table\", \"x\": [0, -1e400], \"h\": [0, 0]}}");
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].rfind("profile.x[1]: -1e400 on line 1 overflows", 0) == 0);
+  p = text_problems("\n 1" + std::string(400, '0'));
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].rfind("(top): 1000000000000000000000000000000000000... on line 2 overflows", 0) == 0);
+}
+
+TEST_CASE("a key given twice names its full path and every line, with the scene's other problems") {
+  std::vector<std::string> p = text_problems(good_text(",\n  \"P\": -1,\n  \"P\": 2e5"));
+  REQUIRE(p.size() == 1);
+  CHECK(p[0] == "load.P: given 3 times (lines 7, 8 and 9); give each key once");
+  p = text_problems(good_text(",\n  \"P\": 2e5,\n  \"lod\": 1"));
+  REQUIRE(p.size() == 2);  // every problem at once
+  CHECK(p[0] == "load.P: given twice (lines 7 and 8); give each key once");
+  CHECK(p[1].rfind("load.lod: unknown key", 0) == 0);
+  p = text_problems("{\"materials\": {\"both\": {\"E\": 1, \"E\": 1}}, \"name\": [{\"a\": 1,\n\"a\": 2}]}");
+  CHECK(p.at(0) == "materials.both.E: given twice (lines 1 and 1); give each key once");
+  CHECK(p.at(1) == "name[0].a: given twice (lines 1 and 2); give each key once");
+}
+
+TEST_CASE("the text of a scene: not JSON is named so; nesting is bounded however deep the text goes") {
+  std::vector<std::string> p = text_problems("{\"name\": \"s\",}");
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].find("not valid JSON") != std::string::npos);
+  CHECK(p[0].find("line 1, column 14") != std::string::npos);
+  const std::size_t n = 1'000'000;
+  p = text_problems("{\"name\": " + std::string(n, '[') + std::string(n, ']') + "}");
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].find("nests deeper than 64") != std::string::npos);
+  CHECK(p[0].rfind("name[0][0]", 0) == 0);
+}
+
+TEST_CASE("a deep document handed to parse_scene is described without deep recursion") {
+  json deep = json::array();
+  for (int i = 0; i < 100000; ++i) deep = json::array({std::move(deep)});
+  json j = good();
+  j["name"] = std::move(deep);
+  CHECK(reports(j, "name", {"[[[[", "...", "an array"}));
+}
+
+TEST_CASE("output.dir defaults to output/<name> also when only output.plots is given") {
+  json j = good();
+  j["output"] = {{"plots", false}};
+  const Scene s = parse_scene(j);
+  CHECK(s.output_dir == std::filesystem::path("output/s"));
+  CHECK_FALSE(s.plots);
+  j["output"] = {{"dir", ""}};
+  CHECK(reports(j, "output.dir", {"is empty"}));
+}
+
+TEST_CASE("an invalid value is one problem: never also reported as missing, nor its placeholder judged") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["effects"] = {{"tangential", json::object()}};
+  const auto once = [&](const std::string& path, std::initializer_list<std::string> fragments) {
+    const auto p = problems(j);
+    CAPTURE(p.size() ? p[0] : "");
+    CHECK(p.size() == 1);
+    CHECK(reports(j, path, fragments));
+  };
+  j["load"]["Q"] = {{"ratio", -1}};
+  once("load.Q.ratio", {"-1 is not allowed"});
+  j["load"]["Q"] = {{"amplitude", "x"}};
+  once("load.Q.amplitude", {"a string"});
+  j["load"]["Q"] = 3;
+  once("load.Q", {"a number", "give an object"});
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["friction"] = "high";
+  once("friction", {"a string"});
+  j["friction"] = 0.5;
+  j["load"]["control"] = "displacment";
+  j["load"]["delta"] = 1e-6;
+  once("load.control", {"not a load control"});
+  j["load"]["control"] = "displacement";
+  j["load"].erase("Q");
+  j["load"]["delta"] = -1e-6;
+  once("load.delta", {"-1e-06 is not allowed"});
+  j["load"] = {{"P", 1e5}, {"history", {1, 2}}};
+  once("load.history[0]", {"[t, P, Q, sigma_bulk]"});
+  j["load"] = {{"P", 1e5}, {"Q", {{"ratio", 0.5}}}};
+  j["effects"] = {{"wear", {{"law", "archerd"}, {"k", 1e-15}, {"cycles", 1e6}}}};
+  once("effects.wear.law", {"not a wear law"});
+  j["effects"]["wear"]["law"] = 3;
+  once("effects.wear.law", {"a number"});
+  j["effects"]["wear"] = {{"law", "archard"}, {"k", 1e-15}, {"cycles", 0.5}, {"record", {10, 1e5}}};
+  once("effects.wear.cycles", {"whole number"});  // the records are not judged against an invalid count
+  j["effects"]["wear"]["cycles"] = 1e6;
+  j["load"] = {{"P", "1e5"}, {"Q", {{"amplitude", 1e4}}}};
+  once("load.P", {"a string"});  // nor is Q against f P with a placeholder P
+  j["load"] = {{"P", 1e5}, {"Q", {{"ratio", 0.5}}}};
+  j["effects"] = {{"tangential", 1}};
+  once("effects.tangential", {"give an object"});
+  j["effects"] = 1;
+  once("effects", {"give an object"});
+  j["effects"] = {{"tangential", json::object()}};
+  j["materials"] = {{"pad", 1}, {"specimen", {{"E", 7e10}, {"nu", 0.33}}}};
+  once("materials.pad", {"give an object"});
+  j["materials"] = {{"both", 1}};
+  once("materials.both", {"give an object"});
+  j["materials"] = {{"pad", {{"E", "2e11"}, {"nu", 0.3}}}, {"specimen", {{"E", 2e11}, {"nu", 0.3}}}};
+  j["effects"] = {{"tangential", {{"route", "analogy"}}}};
+  once("materials.pad.E", {"a string"});  // no dissimilar pair made of a placeholder modulus
+  j = good();
+  j["profile"] = {{"type", "wavy"}, {"amplitude", 1e-6}, {"wavelength", 1e-3}};
+  j["grid"] = {{"window", {1e-3}}};
+  once("grid.window", {"[x_min, x_max]"});
+}
+
+namespace {
+
+// j with the value at pointer set to v.
+json with(json j, const std::string& pointer, double v) {
+  j[json::json_pointer(pointer)] = v;
+  return j;
+}
+
+// A dimensional number's span: the scene is valid with the number at either bound, and the nearest doubles beyond
+// them are refused with one problem, naming the key (path_lo, path_hi) and the allowed span. The lower bound is set
+// at pointer_lo, the upper at pointer_hi.
+void check_span(const json& base, const std::string& pointer_lo, const std::string& path_lo,
+                const std::string& pointer_hi, const std::string& path_hi, double lo, double hi,
+                const std::string& allowed) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  CAPTURE(path_lo);
+  CAPTURE(allowed);
+  CHECK(problems(with(base, pointer_lo, lo)).empty());
+  CHECK(problems(with(base, pointer_hi, hi)).empty());
+  CHECK(problems(with(base, pointer_lo, std::nextafter(lo, -inf))).size() == 1);
+  CHECK(reports(with(base, pointer_lo, std::nextafter(lo, -inf)), path_lo, {"is not allowed", allowed}));
+  CHECK(problems(with(base, pointer_hi, std::nextafter(hi, inf))).size() == 1);
+  CHECK(reports(with(base, pointer_hi, std::nextafter(hi, inf)), path_hi, {"is not allowed", allowed}));
+}
+
+void check_span(const json& base, const std::string& pointer, const std::string& path, double lo, double hi,
+                const std::string& allowed) {
+  check_span(base, pointer, path, pointer, path, lo, hi, allowed);
+}
+
+}  // namespace
+
+TEST_CASE("every dimensional number has a physical span: its bounds pass, the next doubles beyond are refused") {
+  using namespace fretwear::spans;
+  const std::string lengths = "[1e-9, 100] m", positions = "[-100, 100] m";
+  json j = good();
+  check_span(j, "/profile/R", "profile.R", kMinLength, kMaxLength, "a radius in " + lengths);
+  check_span(j, "/profile/offset_x", "profile.offset_x", -kMaxPosition, kMaxPosition, "a position in " + positions);
+  check_span(j, "/materials/both/E", "materials.both.E", kMinModulus, kMaxModulus,
+             "a Young's modulus in [1000, 1e13] Pa");
+  check_span(j, "/load/P", "load.P", kMinLoad, kMaxLoad, "a normal load in [1e-6, 1e12] N/m");
+  j["grid"] = {{"window", {-1e-3, 1e-3}}};
+  check_span(j, "/grid/window/0", "grid.window[0]", "/grid/window/1", "grid.window[1]", -kMaxPosition, kMaxPosition,
+             "a position in " + positions);
+  j["grid"] = {{"window", {0.0, 5e-10}}};
+  j["profile"] = {{"type", "flat"}, {"b", 1e-3}};
+  CHECK(reports(j, "grid.window", {"narrower than 1e-9 m"}));
+
+  j = good();
+  j["profile"] = {{"type", "flat_rounded"}, {"a", 1e-3}, {"R", 1e-2}};
+  check_span(j, "/profile/a", "profile.a", kMinLength, kMaxLength, "a flat half-length in " + lengths);
+  j["profile"] = {{"type", "flat"}, {"b", 1e-3}};
+  check_span(j, "/profile/b", "profile.b", kMinLength, kMaxLength, "a half-width in " + lengths);
+  j["profile"] = {{"type", "wavy"}, {"amplitude", 1e-6}, {"wavelength", 1e-3}};
+  j["grid"] = {{"window", {-5e-4, 5e-4}}};
+  check_span(j, "/profile/amplitude", "profile.amplitude", kMinLength, kMaxLength, "an amplitude in " + lengths);
+  // A lone waviness of 1 nm passes the span, but Profile places its lowest point, one of a million in a window of
+  // 1 mm, outside the window; a cylinder under the waviness keeps the lowest point in place.
+  j["profile"] = {{"type", "sum"},
+                  {"terms", {{{"type", "cylinder"}, {"R", 1e-2}}, {{"type", "wavy"}, {"amplitude", 1e-9}, {"wavelength", 1e-3}}}}};
+  j["grid"] = {{"window", {-5e-4, 5e-4}}};
+  check_span(j, "/profile/terms/1/wavelength", "profile.terms[1].wavelength", kMinLength, kMaxLength,
+             "a wavelength in " + lengths);
+  j = good();
+  j["profile"] = {{"type", "table"}, {"x", {-1e-3, 0.0, 1e-3}}, {"h", {1e-6, 0.0, 1e-6}}};
+  check_span(j, "/profile/x/0", "profile.x[0]", "/profile/x/2", "profile.x[2]", -kMaxPosition, kMaxPosition,
+             "a position in " + positions);
+  check_span(j, "/profile/h/0", "profile.h[0]", -kMaxPosition, kMaxPosition, "a height in " + positions);
+
+  json t = good();  // the tangential cycle
+  t["friction"] = 0.5;
+  t["load"]["Q"] = {{"ratio", 0.5}};
+  t["effects"] = {{"tangential", json::object()}};
+  check_span(t, "/load/Q/ratio", "load.Q.ratio", 0.0, kMaxLoadRatio, "a ratio Q/(fP) in [0, 100]");
+  j = t;
+  j["load"]["Q"] = {{"amplitude", 1e4}};
+  check_span(j, "/load/Q/amplitude", "load.Q.amplitude", 0.0, kMaxLoad, "a tangential load in [0, 1e12] N/m");
+  j = t;
+  j["load"]["bulk_stress"] = {{"amplitude", 1e8}};
+  check_span(j, "/load/bulk_stress/amplitude", "load.bulk_stress.amplitude", -kMaxStress, kMaxStress,
+             "a stress in [-1e12, 1e12] Pa");
+  check_span(t, "/grid/reference_depth", "grid.reference_depth", kMinLength, kMaxLength,
+             "a depth > 0 m below the contact centre, in " + lengths);
+  j = t;
+  j["load"] = {{"P", 1e5}, {"control", "displacement"}, {"delta", 1e-6}};
+  check_span(j, "/load/delta", "load.delta", kMinLength, std::nextafter(kMaxDelta, 0.0),
+             "a displacement amplitude in [1e-9, 1) m");
+  j = t;
+  j["load"] = {{"P", 1e5}, {"history", {{0.0, 1e5, 0.0, 0.0}, {0.5, 1e5, 1e4, 1e8}, {1.0, 1e5, 0.0, 0.0}}}};
+  check_span(j, "/load/history/0/0", "load.history[0]", "/load/history/2/0", "load.history[2]", -kMaxTime, kMaxTime,
+             "t = ");
+  check_span(j, "/load/history/1/1", "load.history[1]", kMinLoad, kMaxLoad,
+             "P = ");
+  CHECK(reports(with(j, "/load/history/1/1", 0.0), "load.history[1]", {"give a normal load in [1e-6, 1e12] N/m"}));
+  check_span(j, "/load/history/1/2", "load.history[1]", -kMaxLoad, kMaxLoad, "Q = ");
+  CHECK(reports(with(j, "/load/history/1/2", 2e12), "load.history[1]", {"a tangential load in [-1e12, 1e12] N/m"}));
+  check_span(j, "/load/history/1/3", "load.history[1]", -kMaxStress, kMaxStress, "sigma_bulk = ");
+  CHECK(reports(with(j, "/load/history/1/3", 2e12), "load.history[1]", {"a stress in [-1e12, 1e12] Pa"}));
+
+  j = t;
+  j["effects"]["wear"] = {{"k", 1e-15}, {"cycles", 1e6}};
+  check_span(j, "/effects/wear/k", "effects.wear.k", kMinWearCoefficient,
+             std::nextafter(kMaxWearCoefficient, 0.0), "a wear coefficient in [1e-30, 1) 1/Pa");
+  j = t;
+  j["effects"]["stress"] = {{"depth", 1e-3}};
+  check_span(j, "/effects/stress/depth", "effects.stress.depth", kMinLength, kMaxLength,
+             "0 (the contact half-width) or a depth in " + lengths);
+  CHECK(problems(with(j, "/effects/stress/depth", 0.0)).empty());
+  j = t;
+  j["effects"]["crack"] = {{"lengths", {1e-5, 2e-5}}, {"at", 0.0}};
+  check_span(j, "/effects/crack/lengths/0", "effects.crack.lengths[0]", kMinLength, kMaxLength,
+             "a crack length in " + lengths);
+  check_span(j, "/effects/crack/at", "effects.crack.at", -kMaxPosition, kMaxPosition,
+             "a position x in " + positions);
+}
+
+TEST_CASE("absurd magnitudes that crashed or completed with nonsense are refused") {
+  json j = good();
+  j["grid"] = {{"window", {-1e200, 1e200}}};
+  CHECK(reports(j, "grid.window[0]", {"-1e+200 is not allowed"}));
+  CHECK(reports(j, "grid.window[1]", {"1e+200 is not allowed"}));
+  j = good();
+  j["profile"]["R"] = 1e-308;
+  CHECK(reports(j, "profile.R", {"1e-308 is not allowed", "[1e-9, 100] m"}));
+  j = good();
+  j["materials"]["both"]["E"] = 1e-310;
+  CHECK(reports(j, "materials.both.E", {"is not allowed", "[1000, 1e13] Pa"}));
 }

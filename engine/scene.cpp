@@ -959,7 +959,7 @@ class SceneText {
                           "within the key's range)",
                           path(frames_.size(), next_part()), shortened(token), line_at(position));
     } else {
-      stop_ = fmt::format("{}: not valid JSON (UTF-8): {}", source_, e.what());
+      stop_ = fmt::format("{}: not valid JSON (UTF-8) at {}: {}", source_, path(frames_.size(), next_part()), e.what());
     }
     close_all();
     return false;
@@ -1031,8 +1031,8 @@ class SceneText {
   bool open(json::value_t type) {
     std::string part = next_part();
     if (frames_.size() >= kMaxSceneDepth) {
-      stop_ = fmt::format("{}: nests deeper than {} objects and arrays (line {}); a scene needs far fewer levels",
-                          path(frames_.size(), part), kMaxSceneDepth, line_at(n_read_));
+      stop_ = fmt::format("{}: {}: nests deeper than {} objects and arrays (line {}); a scene needs far fewer levels",
+                          source_, shortened(path(frames_.size(), part)), kMaxSceneDepth, line_at(n_read_));
       close_all();
       return false;
     }
@@ -1077,6 +1077,10 @@ Scene parse_scene_text(std::string_view text, const std::string& default_name, c
   const bool complete = json::sax_parse(reader.begin(), reader.end(), &reader);
   std::vector<std::string> problems = reader.problems();
   if (!complete) throw SceneError(std::move(problems));
+  // Outside a string the JSON reader takes a NUL byte for the end of the text, and would ignore what follows it.
+  if (const auto nul = text.find('\0'); nul != std::string_view::npos)
+    throw SceneError({fmt::format("{}: holds a NUL byte on line {}; a scene is UTF-8 text", source,
+                                  1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'))});
   try {
     Scene s = parse_scene(j, default_name);
     if (problems.empty()) return s;

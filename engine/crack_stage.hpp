@@ -9,24 +9,9 @@
 #include "contact/crack_solver.hpp"
 #include "contact/grid.hpp"
 #include "contact/subsurface_stress.hpp"
+#include "engine/scene.hpp"
 
 namespace fretwear {
-
-// effects.crack
-struct CrackEffect {
-  std::string at = "trailing_edge";  // "trailing_edge", "leading_edge", or "x" (then x gives the position)
-  double x = 0.0;                    // m, when at == "x"
-  double angle_deg = 90.0;           // to the surface, in [15, 165]; 90 normal to it, below 90 leaning toward +x
-  std::vector<double> lengths;       // crack lengths from the mouth to the tip (m)
-  int quadrature = 60;               // Gauss–Jacobi points
-  double face_friction = 0.0;        // Coulomb coefficient between the crack faces where they touch
-};
-
-// effects.stress
-struct StressEffect {
-  int nx = 161, ny = 81;     // map points across and into the specimen
-  double depth = 0.0;        // map depth (m); 0: the contact half-width
-};
 
 // The loads at one instant: the surface tractions and the bulk stress.
 struct Phase {

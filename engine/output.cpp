@@ -297,7 +297,7 @@ set xlabel 'crack length l (µm)'
 set grid
 set key outside right top
 set title "{}: crack at x = {:.4g} mm ({}), {}" noenhanced
-)", scene.name, r.crack_x * 1e3, scene.crack->at == "x" ? "given" : scene.crack->at,
+)", scene.name, r.crack_x * 1e3, scene.crack->at == CrackPosition::x ? "given" : to_string(scene.crack->at),
                               scene.crack->angle_deg == 90.0
                                   ? std::string("normal to the surface")
                                   : fmt::format("at {:g}° to the surface, face friction {:g}", scene.crack->angle_deg,

@@ -8,8 +8,11 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <span>
 
 #include <fmt/format.h>
+
+#include "contact/crack_solver.hpp"
 
 namespace fretwear {
 
@@ -358,16 +361,60 @@ json profile_to_json(const ProfileSpec& s) {
 
 }  // namespace
 
-std::string to_string(TangentialRoute r) {
-  switch (r) {
-    case TangentialRoute::automatic: return "auto";
-    case TangentialRoute::analogy: return "analogy";
-    case TangentialRoute::incremental: return "incremental";
-  }
+// The words a user types for an enum: one table each, read both ways.
+namespace {
+
+template <typename Enum>
+using Words = std::span<const std::pair<Enum, const char*>>;
+
+constexpr std::pair<TangentialRoute, const char*> kRouteWords[] = {
+    {TangentialRoute::automatic, "auto"}, {TangentialRoute::analogy, "analogy"},
+    {TangentialRoute::incremental, "incremental"}};
+constexpr std::pair<LoadControl, const char*> kControlWords[] = {{LoadControl::force, "force"},
+                                                                 {LoadControl::displacement, "displacement"}};
+// A position x is given as a number, not a word.
+constexpr std::pair<CrackPosition, const char*> kCrackEdgeWords[] = {{CrackPosition::trailing_edge, "trailing_edge"},
+                                                                     {CrackPosition::leading_edge, "leading_edge"}};
+
+template <typename Enum>
+std::string word_of(Words<Enum> words, Enum e) {
+  for (const auto& [value, word] : words)
+    if (value == e) return word;
   return "?";
 }
 
-std::string to_string(LoadControl c) { return c == LoadControl::force ? "force" : "displacement"; }
+// "a", "b" or "c"
+template <typename Enum>
+std::string words_list(Words<Enum> words) {
+  std::string s;
+  for (std::size_t k = 0; k < words.size(); ++k)
+    s += (k == 0 ? "" : k + 1 == words.size() ? " or " : ", ") + fmt::format("\"{}\"", words[k].second);
+  return s;
+}
+
+template <typename Enum>
+Enum from_word(Words<Enum> words, std::string_view word, const char* what) {
+  for (const auto& [value, w] : words)
+    if (word == w) return value;
+  throw InputError(fmt::format("\"{}\" is not {}; use {}", word, what, words_list(words)));
+}
+
+}  // namespace
+
+std::string to_string(TangentialRoute r) { return word_of<TangentialRoute>(kRouteWords, r); }
+TangentialRoute route_from_string(std::string_view word) { return from_word<TangentialRoute>(kRouteWords, word, "a route"); }
+std::string route_words() { return words_list<TangentialRoute>(kRouteWords); }
+
+std::string to_string(LoadControl c) { return word_of<LoadControl>(kControlWords, c); }
+LoadControl control_from_string(std::string_view word) { return from_word<LoadControl>(kControlWords, word, "a load control"); }
+std::string control_words() { return words_list<LoadControl>(kControlWords); }
+
+std::string to_string(CrackPosition at) {
+  return at == CrackPosition::x ? "x" : word_of<CrackPosition>(kCrackEdgeWords, at);
+}
+CrackPosition crack_position_from_string(std::string_view word) {
+  return from_word<CrackPosition>(kCrackEdgeWords, word, "a crack position");
+}
 
 double Scene::P_max() const {
   double P_max = P;
@@ -389,12 +436,20 @@ double Scene::Q_max() const {
 SceneError::SceneError(std::vector<std::string> problems)
     : InputError("the scene is invalid:\n  " + join(problems, "\n  ")), problems_(std::move(problems)) {}
 
-Scene parse_scene(const json& j, const std::string& default_name) {
-  std::vector<std::string> problems;
-  Scene s;
-  if (!j.is_object()) throw SceneError({fmt::format("(top): the scene is {}; give a JSON object", type_name(j))});
-  Reader top(j, "", problems);
+namespace {
 
+// What the scene gives, valid or not: an invalid value is reported once, for what it is, and never again as missing
+// (or as given where it is not used) by the checks of what the effects need.
+struct Given {
+  bool materials_ok = false;  // the moduli as given: the coupling checks need them, not an invalid one's placeholder
+  bool friction = false, load_read = false, P_ok = false, Q = false, delta = false, history = false;
+  bool window = false, reference_depth = false;
+  bool effects_unknown = false;  // effects given but not an object: what they need is unknown
+  std::optional<LoadControl> control = LoadControl::force;  // nullopt: an invalid word
+};
+
+// name, plane.
+void parse_naming(Reader& top, const std::string& default_name, Scene& s) {
   s.name = top.string("name", default_name, "a name of letters, digits, '_', '-' and '.'").value_or("scene");
   if (!valid_name(s.name))
     top.problem("name", fmt::format("\"{}\" cannot name a folder; use letters, digits, '_', '-' and '.'", s.name));
@@ -406,8 +461,10 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       top.problem("plane", fmt::format("\"{}\" is not a plane state; use \"strain\" or \"stress\"", *plane));
     }
   }
+}
 
-  const std::size_t n_problems_before_materials = problems.size();
+// materials: "both", or "pad" and "specimen".
+void parse_materials(Reader& top, Scene& s, std::vector<std::string>& problems) {
   if (const json* m = top.object("materials", true)) {
     Reader r(*m, "materials", problems);
     // Which form is given is read from the keys; a member that is not an object is reported once, as such.
@@ -432,126 +489,116 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     }
     r.finish();
   }
+}
 
-  // The coupling checks below need the moduli as given, not the placeholders of invalid ones.
-  const bool materials_ok = problems.size() == n_problems_before_materials;
-
-  if (const json* p = top.find("profile")) {
-    s.profile = parse_profile(*p, "profile", problems, 0);
+// load.history: points [t, P, Q, sigma_bulk] closing a cycle.
+void parse_history(const json* hv, Reader& r, Scene& s) {
+  const std::string what = "give a list of at least two points [t, P, Q, sigma_bulk] (s, N/m, N/m, Pa)";
+  if (!hv->is_array() || hv->size() < 2) {
+    r.problem("load.history", fmt::format("{} is not {}; {}", describe(*hv),
+                                          hv->is_array() ? "long enough" : "a list", what));
   } else {
-    top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
-  }
-
-  // What the scene gives, valid or not: an invalid value is reported once, for what it is, and never again as
-  // missing (or as given where it is not used) by the checks of what the effects need.
-  const bool friction_given = top.find("friction") != nullptr;
-  if (friction_given)
-    s.friction = top.number("friction", std::nullopt,
-                            {[](double v) { return v > 0.0 && v <= 10.0; }, "a friction coefficient in (0, 10]"});
-
-  bool load_read = false;  // load is an object: the checks may ask for what it lacks
-  bool P_ok = false, Q_given = false, delta_given = false, history_given = false;
-  std::optional<LoadControl> control = LoadControl::force;  // nullopt: an invalid word
-  if (const json* l = top.object("load", true)) {
-    Reader r(*l, "load", problems);
-    load_read = true;
-    const auto P = r.number("P", std::nullopt, normal_load());
-    P_ok = P.has_value();
-    s.P = P.value_or(1.0);
-    Q_given = r.find("Q") != nullptr;
-    if (const json* q = r.object("Q", false)) {
-      Reader rq(*q, "load.Q", problems);
-      const bool has_amplitude = q->contains("amplitude"), has_ratio = q->contains("ratio");
-      if (has_amplitude == has_ratio) {
-        rq.problem("load.Q", "give exactly one of \"amplitude\" (N/m) or \"ratio\" (Q/(fP))");
-        rq.find("amplitude"), rq.find("ratio");
-      } else if (has_amplitude) {
-        s.Q_amplitude = rq.number("amplitude", std::nullopt, tangential_load(0.0));
-      } else {
-        s.Q_ratio = rq.number("ratio", std::nullopt, within(0.0, spans::kMaxLoadRatio, "a ratio Q/(fP)", ""));
+    const std::array<std::pair<const char*, Bound>, 4> point_spans{
+        {{"t", time_point()}, {"P", normal_load()}, {"Q", tangential_load()}, {"sigma_bulk", stress()}}};
+    for (std::size_t i = 0; i < hv->size(); ++i) {
+      const json& pt = (*hv)[i];
+      const std::string at = fmt::format("load.history[{}]", i);
+      const bool numbers = pt.is_array() && pt.size() == 4 && std::all_of(pt.begin(), pt.end(), [](const json& v) {
+        return v.is_number() && std::isfinite(v.get<double>());
+      });
+      if (!numbers) {
+        r.problem(at, fmt::format("{} is not a point [t, P, Q, sigma_bulk] of four finite numbers", describe(pt)));
+        s.history.clear();
+        break;
       }
-      rq.finish();
+      const std::array<double, 4> v{pt[0].get<double>(), pt[1].get<double>(), pt[2].get<double>(),
+                                    pt[3].get<double>()};
+      std::optional<std::string> wrong;
+      for (std::size_t k = 0; k < v.size() && !wrong; ++k)
+        if (!point_spans[k].second.ok(v[k]))
+          wrong = fmt::format("{} = {} is not allowed; give {}", point_spans[k].first, v[k],
+                              point_spans[k].second.allowed);
+      if (wrong) {
+        r.problem(at, *wrong);
+        s.history.clear();
+        break;
+      }
+      if (!s.history.empty() && !(v[0] > s.history.back()[0])) {
+        r.problem(at, fmt::format("t = {} does not exceed the previous {}; t must increase strictly", v[0],
+                                  s.history.back()[0]));
+        s.history.clear();
+        break;
+      }
+      s.history.push_back(v);
     }
-    if (const json* b = r.object("bulk_stress", false)) {
-      Reader rb(*b, "load.bulk_stress", problems);
-      s.bulk_stress = rb.number("amplitude", 0.0, stress()).value_or(0.0);
-      rb.finish();
+    if (!s.history.empty()) {
+      const auto& a = s.history.front();
+      const auto& b = s.history.back();
+      if (a[1] != b[1] || a[2] != b[2] || a[3] != b[3]) {
+        r.problem(fmt::format("load.history[{}]", s.history.size() - 1),
+                  fmt::format("ends the cycle at P, Q, sigma_bulk = {}, {}, {}, not where it starts ({}, {}, {}); "
+                              "a cycle closes: repeat the first point's P, Q and sigma_bulk at the end",
+                              b[1], b[2], b[3], a[1], a[2], a[3]));
+        s.history.clear();
+      }
     }
-    const auto word = r.string("control", "force", "\"force\" or \"displacement\"");
-    if (!word) {
-      control.reset();
-    } else if (*word == "force") {
-      s.control = LoadControl::force;
-    } else if (*word == "displacement") {
-      s.control = LoadControl::displacement;
+  }
+}
+
+// load: P, Q, bulk_stress, control, delta, history.
+void parse_load(Reader& top, Scene& s, Given& given, std::vector<std::string>& problems) {
+  const json* l = top.object("load", true);
+  if (!l) return;
+  Reader r(*l, "load", problems);
+  given.load_read = true;
+  const auto P = r.number("P", std::nullopt, normal_load());
+  given.P_ok = P.has_value();
+  s.P = P.value_or(1.0);
+  given.Q = r.find("Q") != nullptr;
+  if (const json* q = r.object("Q", false)) {
+    Reader rq(*q, "load.Q", problems);
+    const bool has_amplitude = q->contains("amplitude"), has_ratio = q->contains("ratio");
+    if (has_amplitude == has_ratio) {
+      rq.problem("load.Q", "give exactly one of \"amplitude\" (N/m) or \"ratio\" (Q/(fP))");
+      rq.find("amplitude"), rq.find("ratio");
+    } else if (has_amplitude) {
+      s.Q_amplitude = rq.number("amplitude", std::nullopt, tangential_load(0.0));
     } else {
-      r.problem("load.control", fmt::format("\"{}\" is not a load control; use \"force\" or \"displacement\"", *word));
-      control.reset();
+      s.Q_ratio = rq.number("ratio", std::nullopt, within(0.0, spans::kMaxLoadRatio, "a ratio Q/(fP)", ""));
     }
-    if (control) control = s.control;
-    delta_given = r.find("delta") != nullptr;
-    if (delta_given)
-      s.delta = r.number("delta", std::nullopt, displacement_amplitude());
-    if (const json* hv = r.find("history")) {
-      history_given = true;
-      const std::string what = "give a list of at least two points [t, P, Q, sigma_bulk] (s, N/m, N/m, Pa)";
-      if (!hv->is_array() || hv->size() < 2) {
-        r.problem("load.history", fmt::format("{} is not {}; {}", describe(*hv),
-                                              hv->is_array() ? "long enough" : "a list", what));
-      } else {
-        const std::array<std::pair<const char*, Bound>, 4> point_spans{
-            {{"t", time_point()}, {"P", normal_load()}, {"Q", tangential_load()}, {"sigma_bulk", stress()}}};
-        for (std::size_t i = 0; i < hv->size(); ++i) {
-          const json& pt = (*hv)[i];
-          const std::string at = fmt::format("load.history[{}]", i);
-          const bool numbers = pt.is_array() && pt.size() == 4 && std::all_of(pt.begin(), pt.end(), [](const json& v) {
-            return v.is_number() && std::isfinite(v.get<double>());
-          });
-          if (!numbers) {
-            r.problem(at, fmt::format("{} is not a point [t, P, Q, sigma_bulk] of four finite numbers", describe(pt)));
-            s.history.clear();
-            break;
-          }
-          const std::array<double, 4> v{pt[0].get<double>(), pt[1].get<double>(), pt[2].get<double>(),
-                                        pt[3].get<double>()};
-          std::optional<std::string> wrong;
-          for (std::size_t k = 0; k < v.size() && !wrong; ++k)
-            if (!point_spans[k].second.ok(v[k]))
-              wrong = fmt::format("{} = {} is not allowed; give {}", point_spans[k].first, v[k],
-                                  point_spans[k].second.allowed);
-          if (wrong) {
-            r.problem(at, *wrong);
-            s.history.clear();
-            break;
-          }
-          if (!s.history.empty() && !(v[0] > s.history.back()[0])) {
-            r.problem(at, fmt::format("t = {} does not exceed the previous {}; t must increase strictly", v[0],
-                                      s.history.back()[0]));
-            s.history.clear();
-            break;
-          }
-          s.history.push_back(v);
-        }
-        if (!s.history.empty()) {
-          const auto& a = s.history.front();
-          const auto& b = s.history.back();
-          if (a[1] != b[1] || a[2] != b[2] || a[3] != b[3]) {
-            r.problem(fmt::format("load.history[{}]", s.history.size() - 1),
-                      fmt::format("ends the cycle at P, Q, sigma_bulk = {}, {}, {}, not where it starts ({}, {}, {}); "
-                                  "a cycle closes: repeat the first point's P, Q and sigma_bulk at the end",
-                                  b[1], b[2], b[3], a[1], a[2], a[3]));
-            s.history.clear();
-          }
-        }
-      }
-    }
-    r.finish();
+    rq.finish();
   }
+  if (const json* b = r.object("bulk_stress", false)) {
+    Reader rb(*b, "load.bulk_stress", problems);
+    s.bulk_stress = rb.number("amplitude", 0.0, stress()).value_or(0.0);
+    rb.finish();
+  }
+  if (const auto word = r.string("control", "force", control_words())) {
+    try {
+      s.control = control_from_string(*word);
+    } catch (const InputError& e) {
+      r.problem("load.control", e.what());
+      given.control.reset();
+    }
+  } else {
+    given.control.reset();
+  }
+  if (given.control) given.control = s.control;
+  given.delta = r.find("delta") != nullptr;
+  if (given.delta)
+    s.delta = r.number("delta", std::nullopt, displacement_amplitude());
+  if (const json* hv = r.find("history")) {
+    given.history = true;
+    parse_history(hv, r, s);
+  }
+  r.finish();
+}
 
-  // A window given, valid or not, or a grid that is not an object: a missing window is not asked for.
-  bool window_given = top.find("grid") != nullptr, reference_depth_given = false;
+// grid: cells, window, reference_depth.
+void parse_grid(Reader& top, Scene& s, Given& given, std::vector<std::string>& problems) {
+  given.window = top.find("grid") != nullptr;  // a grid that is not an object: a missing window is not asked for
   if (const json* g = top.object("grid", false)) {
-    window_given = g->contains("window");
+    given.window = g->contains("window");
     Reader r(*g, "grid", problems);
     if (const json* c = r.find("cells")) {
       const bool whole = c->is_number_integer() || (c->is_number_float() && std::isfinite(c->get<double>()) &&
@@ -585,167 +632,190 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         s.window = std::pair(lo, hi);
       }
     }
-    reference_depth_given = r.find("reference_depth") != nullptr;
-    if (reference_depth_given)
+    given.reference_depth = r.find("reference_depth") != nullptr;
+    if (given.reference_depth)
       s.reference_depth = r.number("reference_depth", std::nullopt,
                                    {length("a depth").ok, "a depth > 0 m below the contact centre, in " +
                                                               interval(spans::kMinLength, spans::kMaxLength, "m")});
     r.finish();
   }
+}
 
-  // Effects given but not readable: which ones the scene asks for is unknown, and so is what they need.
-  const bool effects_unknown = top.find("effects") && !top.find("effects")->is_object();
-  if (const json* e = top.object("effects", false)) {
-    Reader r(*e, "effects", problems);
-    if (const json* t = r.object("tangential", false)) {
-      Reader rt(*t, "effects.tangential", problems);
-      TangentialEffect effect;
-      if (auto route = rt.string("route", "auto", "\"auto\", \"analogy\" or \"incremental\"")) {
-        if (*route == "auto") {
-          effect.route = TangentialRoute::automatic;
-        } else if (*route == "analogy") {
-          effect.route = TangentialRoute::analogy;
-        } else if (*route == "incremental") {
-          effect.route = TangentialRoute::incremental;
-        } else {
-          rt.problem("effects.tangential.route",
-                     fmt::format("\"{}\" is not a route; use \"auto\", \"analogy\" or \"incremental\"", *route));
-        }
+// effects.tangential: the route and the increments of a cycle.
+void parse_tangential(Reader& r, Scene& s, std::vector<std::string>& problems) {
+  if (const json* t = r.object("tangential", false)) {
+    Reader rt(*t, "effects.tangential", problems);
+    TangentialEffect effect;
+    if (auto route = rt.string("route", "auto", route_words())) {
+      try {
+        effect.route = route_from_string(*route);
+      } catch (const InputError& e) {
+        rt.problem("effects.tangential.route", e.what());
       }
-      effect.increments = int(rt.number("increments", 40.0, {[](double v) { return v >= 4 && v <= 100000 && v == std::floor(v) && std::fmod(v, 4.0) == 0.0; },
-                                                           "a whole number of increments from 4 to 100000, a multiple of 4"})
-                                  .value_or(40.0));
-      rt.finish();
-      s.tangential = effect;
-    } else if (r.find("tangential")) {
-      s.tangential = TangentialEffect{};  // asked for, though not readable: the checks of what it needs still apply
     }
-    if (const json* w = r.object("wear", false)) {
-      Reader rw(*w, "effects.wear", problems);
-      WearEffect effect;
-      const auto law = rw.string("law", "archard", "\"archard\" or \"energy\"");
-      effect.law = law.value_or("");
-      if (effect.law != "archard" && effect.law != "energy") {
-        if (law)
-          rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
-        rw.find("k"), rw.find("alpha");  // which of them belongs is unknown until the law is: not unknown keys
-      } else {
-        const char* key = effect.law == "archard" ? "k" : "alpha";
-        const char* other = effect.law == "archard" ? "alpha" : "k";
-        effect.coefficient = rw.number(key, std::nullopt, within(spans::kMinWearCoefficient, spans::kMaxWearCoefficient,
-                                                                  "a wear coefficient", "1/Pa", true))
-                                 .value_or(1e-15);
-        if (w->contains(other)) {
-          rw.find(other);
-          rw.problem(fmt::format("effects.wear.{}", other),
-                     fmt::format("belongs to the other law; the {} law takes \"{}\"", effect.law, key));
-        }
-      }
-      effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
-                                                            "a share in [0, 1]"})
-                                .value_or(0.5);
-      const auto cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
-                                                             "a whole number of cycles from 1 to 1e12"});
-      effect.cycles = cycles.value_or(1e12);  // records are checked against the cycles only when they are valid
-      effect.stepper = rw.string("stepper", "implicit", "\"implicit\", \"explicit\" or \"cycle_by_cycle\"").value_or("implicit");
-      if (effect.stepper != "implicit" && effect.stepper != "explicit" && effect.stepper != "cycle_by_cycle")
-        rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not a stepper; use \"implicit\", \"explicit\" or "
-                                                       "\"cycle_by_cycle\"", effect.stepper));
-      effect.tolerance = rw.number("tolerance", 1e-3, {[](double v) { return v > 0.0 && v <= 0.1; },
-                                                       "a relative tolerance in (0, 0.1]"})
-                             .value_or(1e-3);
-      if (const json* rec = rw.find("record")) {
-        if (rec->is_number_integer() && rec->get<long long>() >= 1 && rec->get<long long>() <= 1000) {
-          effect.record_count = int(rec->get<long long>());
-        } else if (rec->is_array() && !rec->empty()) {
-          double last = 0.0;
-          for (std::size_t i = 0; i < rec->size(); ++i) {
-            const json& at = (*rec)[i];
-            if (!at.is_number() || !(at.get<double>() > last) || at.get<double>() > effect.cycles) {
-              rw.problem(fmt::format("effects.wear.record[{}]", i),
-                         fmt::format("{} is not allowed; give increasing cycle counts in (0, cycles]", describe(at)));
-              break;
-            }
-            last = at.get<double>();
-            effect.record.push_back(last);
-          }
-          effect.record_count = 0;
-        } else {
-          rw.problem("effects.wear.record", fmt::format("{} is neither a count from 1 to 1000 nor a list of cycles",
-                                                        describe(*rec)));
-        }
-      }
-      rw.finish();
-      s.wear = effect;
-    }
-    if (r.find("wear") && !s.tangential) {
-      s.tangential = TangentialEffect{};
-      s.tangential_implied = true;
-    }
-    if (const json* st = r.object("stress", false)) {
-      Reader rs(*st, "effects.stress", problems);
-      StressEffect effect;
-      const Bound points{[](double v) { return v >= 3 && v <= 2001 && v == std::floor(v); }, "a whole number from 3 to 2001"};
-      effect.nx = int(rs.number("nx", 161.0, points).value_or(161.0));
-      effect.ny = int(rs.number("ny", 81.0, points).value_or(81.0));
-      const Bound depth = length("a depth");
-      effect.depth = rs.number("depth", 0.0, {[depth](double v) { return v == 0.0 || depth.ok(v); },
-                                              "0 (the contact half-width) or " + depth.allowed})
-                         .value_or(0.0);
-      rs.finish();
-      s.stress = effect;
-    }
-    if (const json* c = r.object("crack", false)) {
-      Reader rc(*c, "effects.crack", problems);
-      CrackEffect effect;
-      if (const json* at = rc.find("at")) {
-        const Bound x = position("a position x");
-        if (at->is_number() && std::isfinite(at->get<double>()) && x.ok(at->get<double>())) {
-          effect.at = "x";
-          effect.x = at->get<double>();
-        } else if (at->is_string() && (*at == "trailing_edge" || *at == "leading_edge")) {
-          effect.at = at->get<std::string>();
-        } else {
-          rc.problem("effects.crack.at", fmt::format("{} is not allowed; give \"trailing_edge\", \"leading_edge\" "
-                                                     "or {}", describe(*at), x.allowed));
-        }
-      }
-      // Flatter cracks than CrackSpec::kMinAngle lie close to the surface over their whole length, where the
-      // quadrature converges too slowly to trust (contact/crack_solver.hpp).
-      constexpr double lo = CrackSpec::kMinAngle, hi = 180.0 - CrackSpec::kMinAngle;
-      effect.angle_deg = rc.number("angle_deg", 90.0,
-                                   {[](double v) { return v >= lo && v <= hi; },
-                                    fmt::format("an angle to the surface in [{}, {}] degrees (90: normal to it)", lo, hi)})
-                             .value_or(90.0);
-      effect.face_friction = rc.number("face_friction", 0.0,
-                                       {[](double v) { return v >= 0.0; }, "a Coulomb coefficient >= 0 (0: frictionless faces)"})
-                                 .value_or(0.0);
-      effect.quadrature = int(rc.number("quadrature", 60.0, {[](double v) { return v >= 2 && v <= 1000 && v == std::floor(v); },
-                                                            "a whole number of points from 2 to 1000"})
-                                  .value_or(60.0));
-      const json* lengths = rc.find("lengths");
-      if (!lengths) {
-        rc.problem("effects.crack.lengths", "missing; give an array of crack lengths (m)");
-      } else if (!lengths->is_array() || lengths->empty()) {
-        rc.problem("effects.crack.lengths", fmt::format("{} is not a non-empty array of crack lengths (m)", describe(*lengths)));
-      } else {
-        const Bound crack_length = length("a crack length");
-        for (std::size_t k = 0; k < lengths->size(); ++k) {
-          const json& l = (*lengths)[k];
-          if (!l.is_number() || !std::isfinite(l.get<double>()) || !crack_length.ok(l.get<double>())) {
-            rc.problem(fmt::format("effects.crack.lengths[{}]", k),
-                       fmt::format("{} is not allowed; give {}", describe(l), crack_length.allowed));
-            break;
-          }
-          effect.lengths.push_back(l.get<double>());
-        }
-      }
-      rc.finish();
-      s.crack = effect;
-    }
-    r.finish();
+    effect.increments = int(rt.number("increments", 40.0, {[](double v) { return v >= 4 && v <= 100000 && v == std::floor(v) && std::fmod(v, 4.0) == 0.0; },
+                                                         "a whole number of increments from 4 to 100000, a multiple of 4"})
+                                .value_or(40.0));
+    rt.finish();
+    s.tangential = effect;
+  } else if (r.find("tangential")) {
+    s.tangential = TangentialEffect{};  // asked for, though not readable: the checks of what it needs still apply
   }
+}
 
+// effects.wear.record: a count of log-spaced records, or the cycles to record at.
+void parse_record(const json* rec, Reader& rw, WearEffect& effect) {
+  if (rec->is_number_integer() && rec->get<long long>() >= 1 && rec->get<long long>() <= 1000) {
+    effect.record_count = int(rec->get<long long>());
+  } else if (rec->is_array() && !rec->empty()) {
+    double last = 0.0;
+    for (std::size_t i = 0; i < rec->size(); ++i) {
+      const json& at = (*rec)[i];
+      if (!at.is_number() || !(at.get<double>() > last) || at.get<double>() > effect.cycles) {
+        rw.problem(fmt::format("effects.wear.record[{}]", i),
+                   fmt::format("{} is not allowed; give increasing cycle counts in (0, cycles]", describe(at)));
+        break;
+      }
+      last = at.get<double>();
+      effect.record.push_back(last);
+    }
+    effect.record_count = 0;
+  } else {
+    rw.problem("effects.wear.record", fmt::format("{} is neither a count from 1 to 1000 nor a list of cycles",
+                                                  describe(*rec)));
+  }
+}
+
+// effects.wear: the law and its coefficient, the share of the pad, the cycles, the stepper, the records.
+void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
+  if (const json* w = r.object("wear", false)) {
+    Reader rw(*w, "effects.wear", problems);
+    WearEffect effect;
+    const auto law = rw.string("law", "archard", "\"archard\" or \"energy\"");
+    effect.law = law.value_or("");
+    if (effect.law != "archard" && effect.law != "energy") {
+      if (law)
+        rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
+      rw.find("k"), rw.find("alpha");  // which of them belongs is unknown until the law is: not unknown keys
+    } else {
+      const char* key = effect.law == "archard" ? "k" : "alpha";
+      const char* other = effect.law == "archard" ? "alpha" : "k";
+      effect.coefficient = rw.number(key, std::nullopt, within(spans::kMinWearCoefficient, spans::kMaxWearCoefficient,
+                                                                "a wear coefficient", "1/Pa", true))
+                               .value_or(1e-15);
+      if (w->contains(other)) {
+        rw.find(other);
+        rw.problem(fmt::format("effects.wear.{}", other),
+                   fmt::format("belongs to the other law; the {} law takes \"{}\"", effect.law, key));
+      }
+    }
+    effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
+                                                          "a share in [0, 1]"})
+                              .value_or(0.5);
+    const auto cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
+                                                           "a whole number of cycles from 1 to 1e12"});
+    effect.cycles = cycles.value_or(1e12);  // records are checked against the cycles only when they are valid
+    effect.stepper = rw.string("stepper", "implicit", "\"implicit\", \"explicit\" or \"cycle_by_cycle\"").value_or("implicit");
+    if (effect.stepper != "implicit" && effect.stepper != "explicit" && effect.stepper != "cycle_by_cycle")
+      rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not a stepper; use \"implicit\", \"explicit\" or "
+                                                     "\"cycle_by_cycle\"", effect.stepper));
+    effect.tolerance = rw.number("tolerance", 1e-3, {[](double v) { return v > 0.0 && v <= 0.1; },
+                                                     "a relative tolerance in (0, 0.1]"})
+                           .value_or(1e-3);
+    if (const json* rec = rw.find("record")) parse_record(rec, rw, effect);
+    rw.finish();
+    s.wear = effect;
+  }
+  if (r.find("wear") && !s.tangential) {
+    s.tangential = TangentialEffect{};
+    s.tangential_implied = true;
+  }
+}
+
+// effects.stress: the map's points and depth.
+void parse_stress(Reader& r, Scene& s, std::vector<std::string>& problems) {
+  if (const json* st = r.object("stress", false)) {
+    Reader rs(*st, "effects.stress", problems);
+    StressEffect effect;
+    const Bound points{[](double v) { return v >= 3 && v <= 2001 && v == std::floor(v); }, "a whole number from 3 to 2001"};
+    effect.nx = int(rs.number("nx", 161.0, points).value_or(161.0));
+    effect.ny = int(rs.number("ny", 81.0, points).value_or(81.0));
+    const Bound depth = length("a depth");
+    effect.depth = rs.number("depth", 0.0, {[depth](double v) { return v == 0.0 || depth.ok(v); },
+                                            "0 (the contact half-width) or " + depth.allowed})
+                       .value_or(0.0);
+    rs.finish();
+    s.stress = effect;
+  }
+}
+
+// effects.crack: where, at what angle, how long, the quadrature and the faces' friction.
+void parse_crack(Reader& r, Scene& s, std::vector<std::string>& problems) {
+  if (const json* c = r.object("crack", false)) {
+    Reader rc(*c, "effects.crack", problems);
+    CrackEffect effect;
+    if (const json* at = rc.find("at")) {
+      const Bound x = position("a position x");
+      if (at->is_number() && std::isfinite(at->get<double>()) && x.ok(at->get<double>())) {
+        effect.at = CrackPosition::x;
+        effect.x = at->get<double>();
+      } else if (at->is_string() && (*at == "trailing_edge" || *at == "leading_edge")) {
+        effect.at = crack_position_from_string(at->get<std::string>());
+      } else {
+        rc.problem("effects.crack.at", fmt::format("{} is not allowed; give \"trailing_edge\", \"leading_edge\" "
+                                                   "or {}", describe(*at), x.allowed));
+      }
+    }
+    // Flatter cracks than CrackSpec::kMinAngle lie close to the surface over their whole length, where the
+    // quadrature converges too slowly to trust (contact/crack_solver.hpp).
+    constexpr double lo = CrackSpec::kMinAngle, hi = 180.0 - CrackSpec::kMinAngle;
+    effect.angle_deg = rc.number("angle_deg", 90.0,
+                                 {[](double v) { return v >= lo && v <= hi; },
+                                  fmt::format("an angle to the surface in [{}, {}] degrees (90: normal to it)", lo, hi)})
+                           .value_or(90.0);
+    effect.face_friction = rc.number("face_friction", 0.0,
+                                     {[](double v) { return v >= 0.0; }, "a Coulomb coefficient >= 0 (0: frictionless faces)"})
+                               .value_or(0.0);
+    effect.quadrature = int(rc.number("quadrature", 60.0, {[](double v) { return v >= 2 && v <= 1000 && v == std::floor(v); },
+                                                          "a whole number of points from 2 to 1000"})
+                                .value_or(60.0));
+    const json* lengths = rc.find("lengths");
+    if (!lengths) {
+      rc.problem("effects.crack.lengths", "missing; give an array of crack lengths (m)");
+    } else if (!lengths->is_array() || lengths->empty()) {
+      rc.problem("effects.crack.lengths", fmt::format("{} is not a non-empty array of crack lengths (m)", describe(*lengths)));
+    } else {
+      const Bound crack_length = length("a crack length");
+      for (std::size_t k = 0; k < lengths->size(); ++k) {
+        const json& l = (*lengths)[k];
+        if (!l.is_number() || !std::isfinite(l.get<double>()) || !crack_length.ok(l.get<double>())) {
+          rc.problem(fmt::format("effects.crack.lengths[{}]", k),
+                     fmt::format("{} is not allowed; give {}", describe(l), crack_length.allowed));
+          break;
+        }
+        effect.lengths.push_back(l.get<double>());
+      }
+    }
+    rc.finish();
+    s.crack = effect;
+  }
+}
+
+// effects: each effect's keys in a function of its own.
+void parse_effects(Reader& top, Scene& s, Given& given, std::vector<std::string>& problems) {
+  given.effects_unknown = top.find("effects") && !top.find("effects")->is_object();
+  const json* e = top.object("effects", false);
+  if (!e) return;
+  Reader r(*e, "effects", problems);
+  parse_tangential(r, s, problems);
+  parse_wear(r, s, problems);
+  parse_stress(r, s, problems);
+  parse_crack(r, s, problems);
+  r.finish();
+}
+
+// output: dir (default output/<name>) and plots.
+void parse_output(Reader& top, Scene& s, std::vector<std::string>& problems) {
   if (const json* o = top.object("output", false)) {
     Reader r(*o, "output", problems);
     if (r.find("dir"))  // optional: output/<name> below
@@ -757,23 +827,23 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     r.finish();
   }
   if (s.output_dir.empty()) s.output_dir = std::filesystem::path("output") / s.name;
+}
 
-  top.finish();
-
-  // What the effects need.
-  if (effects_unknown) {
+// What the effects need of the load, the friction and the bodies, and what is given that no effect uses.
+void check_needs(const Scene& s, const Given& given, std::vector<std::string>& problems) {
+  if (given.effects_unknown) {
     // reported above; what the effects need is checked once they are readable
   } else if (s.tangential) {
     const char* who = s.tangential_implied ? "effects.wear (through the load cycle it needs)" : "effects.tangential";
-    if (!friction_given)
+    if (!given.friction)
       problems.push_back(fmt::format("friction: missing; {} needs a friction coefficient in (0, 10]", who));
-    if (history_given) {
-      if (Q_given)
+    if (given.history) {
+      if (given.Q)
         problems.push_back("load.Q: given with load.history, which gives Q at each point; remove load.Q");
       if (s.bulk_stress != 0.0)
         problems.push_back(
             "load.bulk_stress: given with load.history, which gives sigma_bulk at each point; remove it");
-      if (control == LoadControl::displacement)
+      if (given.control == LoadControl::displacement)
         problems.push_back("load.history: its points give Q; with load.control \"displacement\" it is not supported "
                            "yet; use load.control \"force\"");
       if (s.tangential->route == TangentialRoute::analogy)
@@ -786,25 +856,25 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       if (s.stress || s.crack)
         problems.push_back("effects.stress, effects.crack: their top and bottom phases assume the in-phase cycle of "
                            "load.Q; with load.history they are not supported yet");
-    } else if (!control || !load_read) {
+    } else if (!given.control || !given.load_read) {
       // the load control is unknown, or so is the whole load: nothing more to ask for
-    } else if (control == LoadControl::force) {
-      if (!Q_given)
+    } else if (given.control == LoadControl::force) {
+      if (!given.Q)
         problems.push_back(fmt::format("load.Q: missing; {} needs {{\"amplitude\": Q (N/m)}} or {{\"ratio\": Q/(fP)}}",
                                        who));
-      if (delta_given)
+      if (given.delta)
         problems.push_back("load.delta: given, but load.control is \"force\"; set load.control to \"displacement\" "
                            "or remove load.delta");
-      if (s.wear && s.friction && P_ok && s.Q_max() >= *s.friction * s.P)
+      if (s.wear && s.friction && given.P_ok && s.Q_max() >= *s.friction * s.P)
         problems.push_back(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
                                        "under force control the slip, hence the wear, is not determined; prescribe "
                                        "the displacement instead (load.control \"displacement\" with load.delta)",
                                        s.Q_max(), *s.friction * s.P));
     } else {
-      if (!delta_given)
+      if (!given.delta)
         problems.push_back("load.delta: missing; load.control \"displacement\" needs the amplitude of the relative "
                            "tangential displacement of the reference points, " + displacement_amplitude().allowed);
-      if (Q_given)
+      if (given.Q)
         problems.push_back("load.Q: given with load.control \"displacement\", where Q is the result; remove load.Q");
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.control \"displacement\" (the "
@@ -812,14 +882,14 @@ Scene parse_scene(const json& j, const std::string& default_name) {
     }
     const ElasticPair pair(s.pad.E > 0 ? s.pad : Material{1, 0}, s.specimen.E > 0 ? s.specimen : Material{1, 0}, s.plane);
     // Dissimilar bodies: the incremental route couples the normal and tangential problems under force control.
-    if (materials_ok && std::abs(pair.beta()) > 1e-12) {
+    if (given.materials_ok && std::abs(pair.beta()) > 1e-12) {
       const std::string dissimilar = fmt::format("materials: dissimilar bodies (Dundurs beta = {:.4g}) couple the "
                                                  "normal and tangential problems",
                                                  pair.beta());
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (control == LoadControl::displacement || history_given)
+      if (given.control == LoadControl::displacement || given.history)
         problems.push_back(dissimilar + "; the incremental route solves them under force control with Q between "
                                         "fixed limits, and load.control \"displacement\" or load.history with beta "
                                         "!= 0 is not supported yet");
@@ -829,22 +899,25 @@ Scene parse_scene(const json& j, const std::string& default_name) {
                                         "supported yet");
     }
   } else {
-    if (Q_given)
+    if (given.Q)
       problems.push_back("load.Q: given, but no effect uses it; add \"tangential\": {} to effects or remove load.Q");
     if (s.bulk_stress != 0.0)
       problems.push_back("load.bulk_stress: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (friction_given)
+    if (given.friction)
       problems.push_back("friction: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (history_given)
+    if (given.history)
       problems.push_back("load.history: given, but no effect uses it; add \"tangential\": {} to effects");
-    if (control != LoadControl::force || delta_given)
+    if (given.control != LoadControl::force || given.delta)
       problems.push_back("load.control, load.delta: given, but no effect uses them; add \"tangential\": {} to "
                          "effects");
-    if (reference_depth_given)
+    if (given.reference_depth)
       problems.push_back("grid.reference_depth: given, but no effect uses it (the displacement datum serves the load "
                          "cycle); add \"tangential\": {} to effects");
   }
+}
 
+// The profile against the window: the lowest point inside a given window; a window for a lone waviness.
+void check_window(const Scene& s, const Given& given, std::vector<std::string>& problems) {
   // Whole-scene checks, once the parts are readable.
   const bool profile_ok = std::none_of(problems.begin(), problems.end(),
                                        [](const std::string& p) { return p.rfind("profile", 0) == 0; });
@@ -856,7 +929,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
         if (x < s.window->first || x > s.window->second)
           problems.push_back(fmt::format("grid.window: [{}, {}] does not contain the profile's lowest point x = {} m",
                                          s.window->first, s.window->second, x));
-      } else if (profile.periodic() && !window_given) {
+      } else if (profile.periodic() && !given.window) {
         problems.push_back("grid.window: missing; a profile whose lowest point repeats (a lone waviness) needs "
                            "[x_min, x_max] (m)");
       }
@@ -864,6 +937,37 @@ Scene parse_scene(const json& j, const std::string& default_name) {
       problems.push_back(e.what());
     }
   }
+}
+
+}  // namespace
+
+Scene parse_scene(const json& j, const std::string& default_name) {
+  std::vector<std::string> problems;
+  Scene s;
+  if (!j.is_object()) throw SceneError({fmt::format("(top): the scene is {}; give a JSON object", type_name(j))});
+  Reader top(j, "", problems);
+  Given given;
+  parse_naming(top, default_name, s);
+  const std::size_t n_problems_before_materials = problems.size();
+  parse_materials(top, s, problems);
+  given.materials_ok = problems.size() == n_problems_before_materials;
+  if (const json* p = top.find("profile")) {
+    s.profile = parse_profile(*p, "profile", problems, 0);
+  } else {
+    top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
+  }
+
+  given.friction = top.find("friction") != nullptr;
+  if (given.friction)
+    s.friction = top.number("friction", std::nullopt,
+                            {[](double v) { return v > 0.0 && v <= 10.0; }, "a friction coefficient in (0, 10]"});
+  parse_load(top, s, given, problems);
+  parse_grid(top, s, given, problems);
+  parse_effects(top, s, given, problems);
+  parse_output(top, s, problems);
+  top.finish();
+  check_needs(s, given, problems);
+  check_window(s, given, problems);
   if (!problems.empty()) throw SceneError(std::move(problems));
   return s;
 }
@@ -1135,10 +1239,10 @@ json Scene::to_json() const {
   if (crack) {
     j["effects"]["crack"] = {{"angle_deg", crack->angle_deg}, {"lengths", crack->lengths},
                              {"quadrature", crack->quadrature}, {"face_friction", crack->face_friction}};
-    if (crack->at == "x")
+    if (crack->at == CrackPosition::x)
       j["effects"]["crack"]["at"] = crack->x;
     else
-      j["effects"]["crack"]["at"] = crack->at;
+      j["effects"]["crack"]["at"] = to_string(crack->at);
   }
   if (wear) {
     json w = {{"law", wear->law},

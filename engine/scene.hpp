@@ -17,7 +17,6 @@
 #include "contact/elastic_pair.hpp"
 #include "common/error.hpp"
 #include "contact/profile.hpp"
-#include "engine/crack_stage.hpp"
 
 namespace fretwear {
 
@@ -34,10 +33,36 @@ class SceneError : public InputError {
 // effects.tangential: one steady load cycle of partial slip.
 enum class TangentialRoute { automatic, analogy, incremental };
 std::string to_string(TangentialRoute r);  // "auto", "analogy", "incremental"
+// Throws InputError naming the accepted words (route_words()).
+TangentialRoute route_from_string(std::string_view word);
+std::string route_words();
 
 // load.control: what the cycle prescribes, the tangential load Q or the datum's relative displacement δ.
 enum class LoadControl { force, displacement };
 std::string to_string(LoadControl c);  // "force", "displacement"
+LoadControl control_from_string(std::string_view word);  // throws InputError naming control_words()
+std::string control_words();
+
+// effects.crack
+// Where a crack is: at an end of the contact under P alone, or at a position x.
+enum class CrackPosition { trailing_edge, leading_edge, x };
+std::string to_string(CrackPosition at);                 // "trailing_edge", "leading_edge", "x"
+CrackPosition crack_position_from_string(std::string_view word);  // the two edges; throws InputError
+
+struct CrackEffect {
+  CrackPosition at = CrackPosition::trailing_edge;
+  double x = 0.0;                    // m, when at == CrackPosition::x
+  double angle_deg = 90.0;           // to the surface, in [15, 165]; 90 normal to it, below 90 leaning toward +x
+  std::vector<double> lengths;       // crack lengths from the mouth to the tip (m)
+  int quadrature = 60;               // Gauss–Jacobi points
+  double face_friction = 0.0;        // Coulomb coefficient between the crack faces where they touch
+};
+
+// effects.stress
+struct StressEffect {
+  int nx = 161, ny = 81;     // map points across and into the specimen
+  double depth = 0.0;        // map depth (m); 0: the contact half-width
+};
 
 struct TangentialEffect {
   TangentialRoute route = TangentialRoute::automatic;

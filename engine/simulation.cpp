@@ -55,8 +55,8 @@ RunResult Simulation::run(const WearControl* control) const {
     if (scene_.crack) {
       const auto t4 = std::chrono::steady_clock::now();
       const CrackEffect& c = *scene_.crack;
-      result.crack_x = c.at == "trailing_edge" ? n.zones.front().left.x
-                       : c.at == "leading_edge" ? n.zones.back().right.x
+      result.crack_x = c.at == CrackPosition::trailing_edge ? n.zones.front().left.x
+                       : c.at == CrackPosition::leading_edge ? n.zones.back().right.x
                                                 : c.x;
       if (result.wear) {
         for (const WearRecord& rec : result.wear->records) {
@@ -198,7 +198,7 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
     const std::string hi = scene.tangential ? "top" : "loaded", lo = scene.tangential ? "bottom" : "loaded";
     const CrackEffect& c = *scene.crack;
     summary["crack"] = {
-        {"at", c.at == "x" ? json(c.x) : json(c.at)},
+        {"at", c.at == CrackPosition::x ? json(c.x) : json(to_string(c.at))},
         {"x", result.crack_x},
         {"angle_deg", c.angle_deg},
         {"quadrature", c.quadrature},

@@ -21,7 +21,6 @@
 
 #include "contact/contact_zones.hpp"
 #include "common/error.hpp"
-#include "contact/half_plane_kernel.hpp"
 #include "engine/deferred_signals.hpp"
 #include "engine/simulation.hpp"
 #include "engine/version.hpp"
@@ -330,7 +329,7 @@ void write_checkpoint(const std::filesystem::path& path, const json& j) {
   }
 }
 
-WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal) {
+WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& /*normal*/) {
   WearAsymptote a;
   if (scene.control == LoadControl::displacement) {
     a.unavailable = "under displacement control Q_max follows the prescribed displacement as the contact wears, so the "
@@ -340,68 +339,16 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
                     "slip there is no stick zone and the wear never stops";
     return a;
   }
-  // The stick zone of the first cycle, located to sub-cell accuracy.
+  // The stick zones of the first cycle, located to sub-cell accuracy (one per run of the corrective contact).
   AnalogyContactResponse contact(scene, model);
   wear::CycleResponse first;
   try {
-    contact.respond(std::vector<double>(model.grid.n, 0.0), first);
+    contact.respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);
   } catch (const UnsupportedError& e) {  // reverse slip: the incremental route wears it, with no asymptote here
     a.unavailable = std::string("the analogy route cannot give the initial stick zone: ") + e.what();
     return a;
   }
-  (void)normal;
-  const Grid& grid = model.grid;
-  const int n = grid.n;
-  a.w.assign(n, 0.0);
-  a.p.assign(n, 0.0);
-  if (!first.has_stick) return a;
-  // The limit is a complete contact over the stick zones [c_l, c_r] (one per contact zone where there are several,
-  // e.g. two asperities: paper 002 §2 allows any number): on a grid whose cell boundaries fall on c_l and c_r, its
-  // corners are exact, as for a sharp punch (whole cells of the contact grid would misplace them by up to h/2).
-  // With several zones the grid is aligned to the first; the others' corners are placed to within half a cell.
-  const std::vector<Zone> zones = contact.stick_zones();
-  auto stuck = [&zones](double x) {
-    return std::any_of(zones.begin(), zones.end(), [x](const Zone& z) { return x > z.left.x && x < z.right.x; });
-  };
-  const double cl = zones.front().left.x, cr = zones.front().right.x;
-  const double h = (cr - cl) / std::max(1.0, std::round((cr - cl) / grid.h()));
-  const double lo = cl - std::round((cl - grid.x_min) / h) * h;
-  const Grid aligned{lo, lo + n * h, n};
-  const HalfPlaneKernel kernel(aligned, model.pair.A());
-  std::vector<double> g0(n), g(n);
-  for (int i = 0; i < n; ++i) {
-    g0[i] = model.profile.gap(aligned.x(i));
-    g[i] = stuck(aligned.x(i)) ? g0[i] : std::numeric_limits<double>::infinity();
-  }
-  ContactState state;
-  const NormalSolver solver(kernel);
-  const SolveSummary s = solver.solve(g, scene.P, state);
-  if (!s.converged())
-    throw ConvergenceError(fmt::format("wear: the asymptotic complete-contact solve stopped ({}) with residual {:.3g}",
-                                       to_string(s.termination), s.residual));
-  std::vector<double> u(n), w(n, 0.0);
-  kernel.apply(state.p, u);
-  a.extent = {aligned.x_max, aligned.x_min};
-  for (int i = 0; i < n; ++i) {
-    if (std::isfinite(g[i]) || !std::isfinite(g0[i])) continue;
-    const double overlap = -(g0[i] + u[i] - state.approach);
-    if (overlap <= 0.0) continue;
-    w[i] = overlap;
-    a.worn_area += overlap * h;
-    if (overlap > a.max_depth) a.max_depth = overlap, a.x_max_depth = aligned.x(i);
-    a.extent = {std::min(a.extent.first, aligned.left(i)), std::max(a.extent.second, aligned.left(i + 1))};
-  }
-  // On the contact grid (the grids differ by less than a cell): linear interpolation between aligned centres.
-  auto on_aligned = [&](const std::vector<double>& v, double x) {
-    const double t = (x - aligned.x_min) / h - 0.5;
-    const int i = std::clamp(int(std::floor(t)), 0, n - 2);
-    const double f = std::clamp(t - i, 0.0, 1.0);
-    return (1.0 - f) * v[i] + f * v[i + 1];
-  };
-  for (int i = 0; i < n; ++i) {
-    a.w[i] = on_aligned(w, grid.x(i));
-    a.p[i] = stuck(grid.x(i)) ? on_aligned(state.p, grid.x(i)) : 0.0;
-  }
+  static_cast<WearLimit&>(a) = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, contact.stick_zones());
   return a;
 }
 

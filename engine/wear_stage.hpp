@@ -19,6 +19,7 @@
 #include "contact/incremental_slip.hpp"
 #include "contact/normal_solver.hpp"
 #include "contact/reference_datum.hpp"
+#include "contact/wear_limit.hpp"
 #include "engine/scene.hpp"
 #include "wear/contact_response.hpp"
 #include "wear/implicit_stepper.hpp"
@@ -31,20 +32,14 @@ struct NormalResult;
 
 using Interval = std::pair<double, double>;
 
-// The asymptotic state of paper 002 (PHYSICS.md, "Wear"): complete contact over the initial stick zone on the
-// original profile; the worn depth is the overlap it leaves outside. It assumes a stick zone that stays where it
-// started, which holds under force control (Q between fixed limits); under displacement control Q_max changes as the
-// contact wears and the stick zone moves with it (in partial slip the wear still stops, at a limit this does not
-// compute; in gross slip there is no stick zone and wear never stops), so the state is not computed there and
+// The asymptotic state of paper 002 (PHYSICS.md, "Wear"; contact/wear_limit.hpp): complete contact over the initial
+// stick zone on the original profile; the worn depth is the overlap it leaves outside. It assumes a stick zone that
+// stays where it started, which holds under force control (Q between fixed limits); under displacement control Q_max
+// changes as the contact wears and the stick zone moves with it (in partial slip the wear still stops, at a limit this
+// does not compute; in gross slip there is no stick zone and wear never stops), so the state is not computed there and
 // `unavailable` says why (w and p are then empty).
-struct WearAsymptote {
-  std::string unavailable;     // empty when computed; otherwise the reason it is not
-  std::vector<double> p;       // pressure (Pa), zero outside the stick zone
-  std::vector<double> w;       // worn depth, both bodies (m)
-  double worn_area = 0.0;      // ∫ w dx (m²)
-  double max_depth = 0.0;      // m
-  double x_max_depth = 0.0;    // m
-  Interval extent{0.0, 0.0};   // where w > 0 (outer ends, m)
+struct WearAsymptote : WearLimit {
+  std::string unavailable;  // empty when computed; otherwise the reason it is not
 };
 
 // One record of the run.
@@ -221,6 +216,9 @@ class IncrementalContactResponse : public WearContact {
 // asks for that route.
 bool wear_uses_incremental(const Scene& scene);
 
+// The asymptote of the scene on `model`: wear_limit() over the stick zones of the first cycle by the analogy route,
+// or the reason it does not apply (displacement control; reverse slip, which the analogy cannot follow). Throws
+// ConvergenceError when its solve does not converge.
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal);
 
 // The explicit stepper's cap on ΔN as a share of the forward-Euler limit 1.5 Δx/(E* c s_max). Dormand–Prince's

@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "engine/checkpoint.hpp"
 #include "engine/convergence.hpp"
 #include "engine/deferred_signals.hpp"
 #include "engine/output.hpp"

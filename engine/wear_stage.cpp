@@ -2,31 +2,22 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <functional>
-#include <iterator>
-#include <limits>
 #include <memory>
-#include <thread>
 
-#include <boost/numeric/odeint/integrate/max_step_checker.hpp>
-#include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "contact/contact_zones.hpp"
 #include "common/error.hpp"
-#include "engine/deferred_signals.hpp"
+#include "engine/checkpoint.hpp"
 #include "engine/simulation.hpp"
-#include "engine/version.hpp"
+#include "engine/wear_driver.hpp"
 #include "wear/wear_law.hpp"
 
 namespace fretwear {
+
+using nlohmann::json;
 
 bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model, double P,
                                  std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
@@ -180,39 +171,10 @@ bool IncrementalContactResponse::implicit_pressure(std::span<const double> w, st
   return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
 }
 
-namespace {
-
-using nlohmann::json;
-
-// Vectors travel as raw doubles (exact, ±inf included), little-endian on every platform fretwear builds on.
-json blob(const std::vector<double>& v) {
-  std::vector<std::uint8_t> bytes(v.size() * sizeof(double));
-  if (!v.empty()) std::memcpy(bytes.data(), v.data(), bytes.size());
-  return json::binary(std::move(bytes));
-}
-
-std::vector<double> unblob(const json& j) {
-  const auto& bytes = j.get_binary();
-  if (bytes.size() % sizeof(double) != 0) throw InputError("checkpoint: a vector of the wrong size");
-  std::vector<double> v(bytes.size() / sizeof(double));
-  if (!v.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
-  return v;
-}
-
-json state_json(const ContactState& s) { return {{"p", blob(s.p)}, {"gap", blob(s.gap)}, {"approach", s.approach}}; }
-
-void state_from(const json& j, ContactState& s) {
-  s.p = unblob(j.at("p"));
-  s.gap = unblob(j.at("gap"));
-  s.approach = j.at("approach").get<double>();
-}
-
-}  // namespace
-
 json AnalogyContactResponse::save() const {
-  return {{"normal", state_json(normal_)},
-          {"corrective", state_json(corrective_)},
-          {"implicit", state_json(implicit_)},
+  return {{"normal", contact_state_json(normal_)},
+          {"corrective", contact_state_json(corrective_)},
+          {"implicit", contact_state_json(implicit_)},
           {"cycle_solves", cycle_solves},
           {"cycle_iterations", cycle_iterations},
           {"implicit_solves", implicit_solves},
@@ -220,9 +182,9 @@ json AnalogyContactResponse::save() const {
 }
 
 void AnalogyContactResponse::restore(const json& j) {
-  state_from(j.at("normal"), normal_);
-  state_from(j.at("corrective"), corrective_);
-  state_from(j.at("implicit"), implicit_);
+  contact_state_from(j.at("normal"), normal_);
+  contact_state_from(j.at("corrective"), corrective_);
+  contact_state_from(j.at("implicit"), implicit_);
   cycle_solves = j.at("cycle_solves").get<long>();
   cycle_iterations = j.at("cycle_iterations").get<long>();
   implicit_solves = j.at("implicit_solves").get<long>();
@@ -231,8 +193,8 @@ void AnalogyContactResponse::restore(const json& j) {
 
 json IncrementalContactResponse::save() const {
   return {{"route", "incremental"},
-          {"normal", state_json(normal_)},
-          {"implicit", state_json(implicit_)},
+          {"normal", contact_state_json(normal_)},
+          {"implicit", contact_state_json(implicit_)},
           {"cycle_solves", cycle_solves},
           {"cycle_iterations", cycle_iterations},
           {"implicit_solves", implicit_solves},
@@ -241,92 +203,12 @@ json IncrementalContactResponse::save() const {
 
 void IncrementalContactResponse::restore(const json& j) {
   if (j.value("route", "") != "incremental") throw InputError("checkpoint: written by the analogy route's wear run");
-  state_from(j.at("normal"), normal_);
-  state_from(j.at("implicit"), implicit_);
+  contact_state_from(j.at("normal"), normal_);
+  contact_state_from(j.at("implicit"), implicit_);
   cycle_solves = j.at("cycle_solves").get<long>();
   cycle_iterations = j.at("cycle_iterations").get<long>();
   implicit_solves = j.at("implicit_solves").get<long>();
   implicit_iterations = j.at("implicit_iterations").get<long>();
-}
-
-std::filesystem::path checkpoint_path(const Scene& scene) {
-  std::filesystem::path p = scene.output_dir;
-  if (!p.has_filename()) p = p.parent_path();  // "output/x/" names the folder x
-  p += ".checkpoint";
-  return p;
-}
-
-std::uint64_t scene_hash(const Scene& scene) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const unsigned char c : scene.to_json().dump()) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
-
-std::optional<json> read_checkpoint(const std::filesystem::path& path, const Scene& scene) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
-  json j = json::from_cbor(bytes, true, false);
-  if (j.is_discarded() || !j.is_object() || j.value("format", "") != "fretwear-checkpoint")
-    throw InputError(fmt::format("{}: not a fretwear checkpoint; delete it, or run without --resume", path.string()));
-  if (j.value("format_version", 0) != kCheckpointFormat || j.value("fretwear", "") != std::string(kVersion))
-    throw InputError(fmt::format("{}: written by fretwear {} (checkpoint format {}); this is fretwear {} (format {}): "
-                                 "it cannot be resumed. Delete it, or run without --resume",
-                                 path.string(), j.value("fretwear", "?"), j.value("format_version", 0), kVersion,
-                                 kCheckpointFormat));
-  const std::string want = fmt::format("{:016x}", scene_hash(scene));
-  if (j.value("scene_hash", "") != want)
-    throw InputError(fmt::format("{}: the checkpoint belongs to another scene (\"{}\", hash {}; this scene \"{}\" "
-                                 "resolves to hash {}): refused. Delete it, or run without --resume",
-                                 path.string(), j.value("scene", "?"), j.value("scene_hash", "?"), scene.name, want));
-  return j;
-}
-
-void write_checkpoint(const std::filesystem::path& path, const json& j) {
-  const std::vector<std::uint8_t> bytes = json::to_cbor(j);
-  const DeferredStopSignals hold;  // no temporary file left by a signal
-  if (path.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(path.parent_path(), ec);  // an error shows at open()
-  }
-  std::filesystem::path tmp = path;
-  tmp += fmt::format(".tmp-{}", ::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t k = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) {
-      const int e = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(e)));
-    }
-    done += std::size_t(k);
-  }
-  // FRETWEAR_CHECKPOINT_PAUSE_MS (tests only): a pause with the temporary file written, so that a test's signals
-  // land while the checkpoint is being put in place.
-  if (const char* pause = std::getenv("FRETWEAR_CHECKPOINT_PAUSE_MS"))
-    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    ::unlink(tmp.c_str());
-    throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    ::unlink(tmp.c_str());
-    throw Error(fmt::format("cannot move the checkpoint into {}: {}", path.string(), std::strerror(errno)));
-  }
-  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir >= 0) {
-    ::fsync(dir);
-    ::close(dir);
-  }
 }
 
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& /*normal*/) {
@@ -371,94 +253,6 @@ std::vector<double> record_times(const WearEffect& w) {
   if (t.back() < w.cycles) t.push_back(w.cycles);
   return t;
 }
-
-// Where the driver stands between two steps: all a resumed run needs besides the state w and the steppers' own.
-struct DriveState {
-  double N = 0.0;         // cycles done
-  double dt = 0.0;        // the step size to try next (cycles)
-  std::size_t next = 0;   // index of the next record time to observe
-  long steps = 0;         // accepted steps
-};
-
-// odeint's integrate_times for a controlled stepper (boost/numeric/odeint/integrate/detail/integrate_times.hpp),
-// step for step, with its loop state held in `s` instead of locals, so that it can stop at any step boundary and be
-// continued later from a saved `s`: observe(w, t) at each record time, then boundary(s, true); boundary(s, false)
-// after each accepted step. A false from boundary stops the run (false is returned) unless all is recorded.
-template <class Stepper, class System, class Observe, class Boundary>
-bool drive_times(Stepper& stepper, System system, std::vector<double>& w, const std::vector<double>& times,
-                 DriveState& s, Observe observe, Boundary boundary) {
-  namespace odeint = boost::numeric::odeint;
-  odeint::failed_step_checker checker;
-  auto before = [](double t1, double t2) { return t2 - t1 > std::numeric_limits<double>::epsilon(); };
-  while (s.next < times.size()) {
-    while (before(s.N, times[s.next])) {
-      double current = std::min(s.dt, times[s.next] - s.N);  // end exactly on the record time
-      if (stepper.try_step(system, w, s.N, current) == odeint::controlled_step_result::success) {
-        ++s.steps;
-        checker.reset();
-        s.dt = std::max(s.dt, current);  // continue with the step size the record time had cut
-        if (!boundary(s, false)) return false;
-      } else {
-        checker();
-        s.dt = current;
-      }
-    }
-    observe(w, times[s.next]);
-    ++s.next;
-    if (!boundary(s, true) && s.next < times.size()) return false;
-  }
-  return true;
-}
-
-// A stepper without error control (odeint's euler) in the controlled interface: every step succeeds at the size asked.
-template <class Stepper>
-struct AlwaysAccepted {
-  Stepper stepper;
-  template <class System>
-  boost::numeric::odeint::controlled_step_result try_step(System system, std::vector<double>& w, double& N,
-                                                          double& dN) {
-    stepper.do_step(system, w, N, dN);
-    N += dN;
-    return boost::numeric::odeint::controlled_step_result::success;
-  }
-};
-
-json record_json(const WearRecord& r) {
-  return {{"cycles", r.cycles},
-          {"worn_area", r.worn_area},
-          {"max_depth", r.max_depth},
-          {"p_max", r.p_max},
-          {"Q_max", r.Q_max},
-          {"stick_zone", r.stick_zone ? json{r.stick_zone->first, r.stick_zone->second} : json(nullptr)},
-          {"contact", {r.contact.first, r.contact.second}},
-          {"fraction", r.fraction},
-          {"w", blob(r.w)},
-          {"p", blob(r.p)},
-          {"s", blob(r.s)},
-          {"q", blob(r.q)}};
-}
-
-WearRecord record_from(const json& j) {
-  WearRecord r;
-  r.cycles = j.at("cycles").get<double>();
-  r.worn_area = j.at("worn_area").get<double>();
-  r.max_depth = j.at("max_depth").get<double>();
-  r.p_max = j.at("p_max").get<double>();
-  r.Q_max = j.value("Q_max", 0.0);
-  if (!j.at("stick_zone").is_null()) r.stick_zone = Interval{j["stick_zone"][0], j["stick_zone"][1]};
-  r.contact = {j.at("contact")[0].get<double>(), j.at("contact")[1].get<double>()};
-  r.fraction = j.at("fraction").get<double>();
-  r.w = unblob(j.at("w"));
-  r.p = unblob(j.at("p"));
-  r.s = unblob(j.at("s"));
-  r.q = unblob(j.at("q"));
-  return r;
-}
-
-}  // namespace
-
-
-namespace {
 
 // The contact the wear stage sees: the incremental route under displacement control or when the scene asks for it,
 // the analogy otherwise.
@@ -563,13 +357,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     DriveState s{times.front(), dN, 0, 0};
     if (control.resume) {
       const json& j = *control.resume;
-      if (j.at("stepper").get<std::string>() != effect.stepper || j.at("cells").get<int>() != n)
-        throw InputError("checkpoint: written by another stepper or grid");
-      s = {j.at("cycles").get<double>(), j.at("dN").get<double>(), j.at("next_record").get<std::size_t>(),
-           j.at("steps").get<long>()};
-      w = unblob(j.at("w"));
-      stage.records.clear();
-      for (const json& r : j.at("records")) stage.records.push_back(record_from(r));
+      s = resume_wear(j, scene, w, stage.records);
       contact.restore(j.at("contact"));
       restore(j.at("stepper_state"));
       stage.resumed_from = s.N;
@@ -587,24 +375,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
       const bool due = std::chrono::duration<double>(clock::now() - last_checkpoint).count() >=
                        control.checkpoint_interval;
       if (!control.checkpoint.empty() && (recorded || stop || due)) {
-        json j = {{"format", "fretwear-checkpoint"},
-                  {"format_version", kCheckpointFormat},
-                  {"fretwear", kVersion},
-                  {"scene", scene.name},
-                  {"scene_hash", fmt::format("{:016x}", control.scene_hash)},
-                  {"stepper", effect.stepper},
-                  {"cells", n},
-                  {"cycles", st.N},
-                  {"cycles_total", times.back()},
-                  {"dN", st.dt},
-                  {"next_record", st.next},
-                  {"steps", st.steps},
-                  {"w", blob(w)},
-                  {"records", json::array()},
-                  {"contact", contact.save()},
-                  {"stepper_state", save()}};
-        for (const WearRecord& r : stage.records) j["records"].push_back(record_json(r));
-        write_checkpoint(control.checkpoint, j);
+        write_checkpoint(control.checkpoint, wear_checkpoint(scene, control.scene_hash, st, times.back(), w,
+                                                             stage.records, contact.save(), save()));
         last_checkpoint = clock::now();
       }
       return !stop;
@@ -622,28 +394,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     wear::WearRateSystem rate(contact, stage.rate_coefficient);
     const double dN = std::min(stage.explicit_step_cap, std::max(1.0, effect.tolerance * depth / rate_max));
     drive(
-        stepper, std::ref(rate), dN,
-        [&] {
-          const auto& st = stepper.stats();
-          const auto& last = rate.last_response();
-          return json{{"accepted", st.accepted}, {"rejected", st.rejected}, {"max_step", st.max_step},
-                      {"evaluations", rate.evaluations()}, {"p", blob(last.p)}, {"s", blob(last.s)},
-                      {"stick", {last.has_stick, last.stick_left, last.stick_right}}};
-        },
-        [&](const json& j) {
-          wear::CycleResponse last;
-          last.p = unblob(j.at("p"));
-          last.s = unblob(j.at("s"));
-          last.has_stick = j.at("stick")[0].get<bool>();
-          last.stick_left = j.at("stick")[1].get<double>();
-          last.stick_right = j.at("stick")[2].get<double>();
-          rate.restore(j.at("evaluations").get<long>(), std::move(last));
-          // The derivative dopri5 carries at a step boundary is the rate of its last stage, at the state reached.
-          const std::vector<double> dwdN = rate.last_rate();
-          const int accepted = j.at("accepted").get<int>();
-          stepper.restore({accepted, j.at("rejected").get<int>(), j.at("max_step").get<double>()}, w,
-                          accepted > 0 ? &dwdN : nullptr);
-        });
+        stepper, std::ref(rate), dN, [&] { return save_explicit(stepper, rate); },
+        [&](const json& j) { restore_explicit(j, stepper, rate, w); });
     stage.steps = stepper.stats().accepted;
     stage.rejected_steps = stepper.stats().rejected;
     stage.explicit_max_step = stepper.stats().max_step;
@@ -654,8 +406,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     wear::WearRateSystem rate(contact, stage.rate_coefficient);
     AlwaysAccepted<wear::CycleByCycleStepper> stepper;
     const DriveState s = drive(
-        stepper, std::ref(rate), wear::kCycle, [&] { return json{{"evaluations", rate.evaluations()}}; },
-        [&](const json& j) { rate.restore(j.at("evaluations").get<long>(), {}); });
+        stepper, std::ref(rate), wear::kCycle, [&] { return save_cycle_by_cycle(rate); },
+        [&](const json& j) { restore_cycle_by_cycle(j, rate); });
     stage.steps = int(s.steps);
     stage.responses = int(rate.evaluations());
   } else {
@@ -664,30 +416,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     wear::ImplicitWearStepper stepper(stage.rate_coefficient, effect.tolerance);
     try {
     drive(
-        stepper, wear::ResponseRef{&contact}, dN,
-        [&] {
-          const wear::ImplicitStepperState st = stepper.state();
-          return json{{"accepted", st.stats.accepted},
-                      {"rejected", st.stats.rejected},
-                      {"implicit_solves", st.stats.implicit_solves},
-                      {"responses", st.stats.responses},
-                      {"last_error", st.stats.last_error},
-                      {"unconverged", st.stats.unconverged},
-                      {"p_full", blob(st.p_full)},
-                      {"p_half", blob(st.p_half)}};
-        },
-        [&](const json& j) {
-          wear::ImplicitStepperState st;
-          st.stats.accepted = j.at("accepted").get<int>();
-          st.stats.rejected = j.at("rejected").get<int>();
-          st.stats.implicit_solves = j.at("implicit_solves").get<int>();
-          st.stats.responses = j.at("responses").get<int>();
-          st.stats.last_error = j.at("last_error").get<double>();
-          st.stats.unconverged = j.value("unconverged", 0);
-          st.p_full = unblob(j.at("p_full"));
-          st.p_half = unblob(j.at("p_half"));
-          stepper.restore(st);
-        });
+        stepper, wear::ResponseRef{&contact}, dN, [&] { return save_implicit(stepper); },
+        [&](const json& j) { restore_implicit(j, stepper); });
     } catch (const wear::ImplicitSolveFailure& e) {
       const SolveSummary& last = contact.last_unconverged;
       throw ConvergenceError(fmt::format("{} ({}, residual {:.3g})", e.what(), to_string(last.termination),

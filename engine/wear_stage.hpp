@@ -86,24 +86,9 @@ struct WearControl {
   std::function<bool()> stop_requested;               // true: stop at this boundary (a checkpoint is written)
   std::filesystem::path checkpoint;                   // where checkpoints go; empty: none
   double checkpoint_interval = 60.0;                  // seconds between checkpoints between records (0: every step)
-  std::uint64_t scene_hash = 0;                       // scene_hash(scene), stored in the checkpoint
+  std::uint64_t scene_hash = 0;                       // scene_hash(scene) (engine/checkpoint.hpp), stored in it
   std::optional<nlohmann::json> resume;               // a checkpoint read by read_checkpoint(), to continue from
 };
-
-// Checkpoints (docs/SCENES.md, "Long runs"): everything a wear run carries from one step to the next — the wear
-// depth, the cycle, the next ΔN, the record index, the records so far, the stepper's and the contact solver's warm
-// starts and counts — so that a resumed run takes exactly the steps the uninterrupted one takes. CBOR (RFC 8949),
-// vectors as raw little-endian doubles; written to a temporary file, fsync'ed and renamed over the previous one.
-inline constexpr int kCheckpointFormat = 1;
-// <output.dir>.checkpoint: beside the output folder, which is replaced only when a run completes.
-std::filesystem::path checkpoint_path(const Scene& scene);
-// FNV-1a (64 bit) of the resolved scene's JSON: two scenes that resolve alike share a checkpoint.
-std::uint64_t scene_hash(const Scene& scene);
-// The checkpoint at `path` for this scene, or nothing when there is none. Throws InputError when the file is not a
-// fretwear checkpoint, has another format or fretwear version, or belongs to another scene.
-std::optional<nlohmann::json> read_checkpoint(const std::filesystem::path& path, const Scene& scene);
-// Writes j atomically (temporary file, fsync, rename, fsync of the folder).
-void write_checkpoint(const std::filesystem::path& path, const nlohmann::json& j);
 
 // What run_wear needs of a contact besides wear::ContactResponse: the shear at the top of the last cycle solved
 // (records), the warm starts of its solves (checkpoints) and its counts.

@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "common/error.hpp"
+#include "engine/checkpoint.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
 #include "scenes.hpp"

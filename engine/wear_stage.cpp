@@ -19,8 +19,6 @@
 
 namespace fretwear {
 
-using nlohmann::json;
-
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& /*normal*/) {
   WearAsymptote a;
   if (scene.control == LoadControl::displacement) {
@@ -43,28 +41,6 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
   static_cast<WearLimit&>(a) = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, contact.stick_zones());
   return a;
 }
-
-namespace {
-
-// Record times: the scene's list, or `count` log-spaced from cycles/10⁴ (at least 1) to cycles; always 0 first.
-std::vector<double> record_times(const WearEffect& w) {
-  std::vector<double> t{0.0};
-  if (!w.record.empty()) {
-    t.insert(t.end(), w.record.begin(), w.record.end());
-  } else {
-    const double first = std::max(1.0, w.cycles * 1e-4);
-    const int k = w.record_count;
-    for (int i = 0; i < k; ++i) {
-      const double x = k == 1 ? w.cycles : first * std::pow(w.cycles / first, double(i) / (k - 1));
-      const double rounded = std::round(x);
-      if (rounded > t.back()) t.push_back(std::min(rounded, w.cycles));
-    }
-  }
-  if (t.back() < w.cycles) t.push_back(w.cycles);
-  return t;
-}
-
-}  // namespace
 
 std::string cycle_by_cycle_problem(double stability_limit) {
   if (stability_limit > wear::kCycle || stability_limit == 0.0) return {};
@@ -98,138 +74,226 @@ WearEstimate estimate_wear(const Scene& scene, const Model& model, const NormalR
   return e;
 }
 
+namespace {
+
+using nlohmann::json;
+
+// Record times: the scene's list, or `count` log-spaced from cycles/10⁴ (at least 1) to cycles; always 0 first.
+std::vector<double> record_times(const WearEffect& w) {
+  std::vector<double> t{0.0};
+  if (!w.record.empty()) {
+    t.insert(t.end(), w.record.begin(), w.record.end());
+  } else {
+    const double first = std::max(1.0, w.cycles * 1e-4);
+    const int k = w.record_count;
+    for (int i = 0; i < k; ++i) {
+      const double x = k == 1 ? w.cycles : first * std::pow(w.cycles / first, double(i) / (k - 1));
+      const double rounded = std::round(x);
+      if (rounded > t.back()) t.push_back(std::min(rounded, w.cycles));
+    }
+  }
+  if (t.back() < w.cycles) t.push_back(w.cycles);
+  return t;
+}
+
+// One wear run under way: the worn state w on the contact, driven by a stepper through the record times, recorded
+// into the stage, and steered by the control at every step boundary (progress, a stop, checkpoints).
+class WearRun {
+ public:
+  WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage)
+      : scene_(scene),
+        effect_(*scene.wear),
+        model_(model),
+        control_(control),
+        contact_(contact),
+        stage_(stage),
+        times_(record_times(effect_)),
+        w_(std::size_t(model.grid.n), 0.0) {
+    stage_.cycles_reached = times_.back();  // until a stop says otherwise
+  }
+
+  // Nothing slips, nothing wears: every record is of the unworn contact.
+  void record_unworn() {
+    for (double t : times_) record(w_, t);
+  }
+
+  // The three steppers; rate_max = max c p s at the start (m/cycle) sets the first step.
+  void drive_explicit(double rate_max);
+  void drive_cycle_by_cycle();
+  void drive_implicit(double rate_max);
+
+ private:
+  // The record of `state` at `cycles`: one response on it.
+  void record(const std::vector<double>& state, double cycles);
+  // Drives `stepper` from the start, or from control.resume (save/restore carry the stepper's own state, as
+  // engine/checkpoint.hpp's schemas), to the last record or a stop; the stage learns where it stopped.
+  template <class Stepper, class System, class Save, class Restore>
+  DriveState drive(Stepper& stepper, System system, double dN, Save save, Restore restore);
+  // At each step boundary: progress, the stop request, a checkpoint when one is due. False: stop.
+  template <class Save>
+  bool boundary(const DriveState& at, bool recorded, Save& save);
+
+  using clock = std::chrono::steady_clock;
+  const Scene& scene_;
+  const WearEffect& effect_;
+  const Model& model_;
+  const WearControl& control_;
+  WearContact& contact_;
+  WearStage& stage_;
+  const std::vector<double> times_;
+  std::vector<double> w_;
+  clock::time_point last_checkpoint_;
+};
+
+void WearRun::record(const std::vector<double>& state, double cycles) {
+  const int n = model_.grid.n;
+  const double h = model_.grid.h();
+  wear::CycleResponse r;
+  contact_.respond(state, r);
+  WearRecord rec;
+  rec.cycles = cycles;
+  rec.w = state;
+  rec.p = r.p;
+  rec.s = r.s;
+  rec.q = contact_.shear_top();
+  rec.Q_max = contact_.Q_top();
+  for (int i = 0; i < n; ++i) {
+    rec.worn_area += state[i] * h;
+    rec.max_depth = std::max(rec.max_depth, state[i]);
+    rec.p_max = std::max(rec.p_max, r.p[i]);
+  }
+  if (r.has_stick) rec.stick_zone = Interval{r.stick_left, r.stick_right};
+  std::vector<double> g0w(n);
+  for (int i = 0; i < n; ++i) g0w[i] = model_.g0[i] + state[i];
+  const auto zones = locate_zones(model_.grid, r.p, g0w);
+  if (!zones.empty()) rec.contact = {zones.front().left.x, zones.back().right.x};
+  rec.fraction = stage_.asymptote.worn_area > 0.0 ? rec.worn_area / stage_.asymptote.worn_area : 0.0;
+  stage_.records.push_back(std::move(rec));
+}
+
+template <class Stepper, class System, class Save, class Restore>
+DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save, Restore restore) {
+  DriveState s{times_.front(), dN, 0, 0};
+  if (control_.resume) {
+    const json& j = *control_.resume;
+    s = resume_wear(j, scene_, w_, stage_.records);
+    contact_.restore(j.at("contact"));
+    restore(j.at("stepper_state"));
+    stage_.resumed_from = s.N;
+  }
+  last_checkpoint_ = clock::now();
+  const bool completed = drive_times(
+      stepper, system, w_, times_, s, [this](const std::vector<double>& state, double N) { record(state, N); },
+      [this, &save](const DriveState& at, bool recorded) { return boundary(at, recorded, save); });
+  stage_.interrupted = !completed;
+  stage_.cycles_reached = s.N;
+  return s;
+}
+
+template <class Save>
+bool WearRun::boundary(const DriveState& at, bool recorded, Save& save) {
+  const double h = model_.grid.h();
+  double area = 0.0;
+  for (double wi : w_) area += wi * h;
+  const double fraction = stage_.asymptote.worn_area > 0.0 ? area / stage_.asymptote.worn_area : 0.0;
+  const WearProgress progress{at.N, times_.back(), at.dt, fraction, int(at.steps)};
+  if (control_.progress) control_.progress(progress);
+  const bool stop = control_.stop_requested && control_.stop_requested();
+  const bool due =
+      std::chrono::duration<double>(clock::now() - last_checkpoint_).count() >= control_.checkpoint_interval;
+  if (!control_.checkpoint.empty() && (recorded || stop || due)) {
+    write_checkpoint(control_.checkpoint, wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_,
+                                                          stage_.records, contact_.save(), save()));
+    last_checkpoint_ = clock::now();
+  }
+  return !stop;
+}
+
+void WearRun::drive_explicit(double rate_max) {
+  // abs: the tolerance on the scale of the depth the run wears toward, as the implicit stepper's max-norm.
+  const double depth = stage_.asymptote.max_depth > 0.0 ? stage_.asymptote.max_depth : rate_max * effect_.cycles;
+  stage_.explicit_step_cap = kExplicitCapFraction * stage_.stability_limit;
+  wear::ExplicitWearStepper stepper(effect_.tolerance * depth, effect_.tolerance, stage_.explicit_step_cap);
+  wear::WearRateSystem rate(contact_, stage_.rate_coefficient);
+  const double dN = std::min(stage_.explicit_step_cap, std::max(1.0, effect_.tolerance * depth / rate_max));
+  drive(
+      stepper, std::ref(rate), dN, [&] { return save_explicit(stepper, rate); },
+      [&](const json& j) { restore_explicit(j, stepper, rate, w_); });
+  stage_.steps = stepper.stats().accepted;
+  stage_.rejected_steps = stepper.stats().rejected;
+  stage_.explicit_max_step = stepper.stats().max_step;
+  stage_.responses = int(rate.evaluations());
+}
+
+void WearRun::drive_cycle_by_cycle() {
+  if (const std::string problem = cycle_by_cycle_problem(stage_.stability_limit); !problem.empty())
+    throw UnsupportedError(problem);
+  wear::WearRateSystem rate(contact_, stage_.rate_coefficient);
+  AlwaysAccepted<wear::CycleByCycleStepper> stepper;
+  const DriveState s = drive(
+      stepper, std::ref(rate), wear::kCycle, [&] { return save_cycle_by_cycle(rate); },
+      [&](const json& j) { restore_cycle_by_cycle(j, rate); });
+  stage_.steps = int(s.steps);
+  stage_.responses = int(rate.evaluations());
+}
+
+void WearRun::drive_implicit(double rate_max) {
+  // First jump: a small share of the asymptote's depth at the initial rate, bounded by the first record.
+  const double dN = std::max(1.0, effect_.tolerance * stage_.asymptote.max_depth / rate_max);
+  wear::ImplicitWearStepper stepper(stage_.rate_coefficient, effect_.tolerance);
+  try {
+    drive(
+        stepper, wear::ResponseRef{&contact_}, dN, [&] { return save_implicit(stepper); },
+        [&](const json& j) { restore_implicit(j, stepper); });
+  } catch (const wear::ImplicitSolveFailure& e) {
+    const SolveSummary& last = contact_.last_unconverged;
+    throw ConvergenceError(fmt::format("{} ({}, residual {:.3g})", e.what(), to_string(last.termination),
+                                       last.residual));
+  }
+  stage_.steps = stepper.stats().accepted;
+  stage_.unconverged_steps = stepper.stats().unconverged;
+  stage_.rejected_steps = stepper.stats().rejected;
+  stage_.implicit_solves = stepper.stats().implicit_solves;
+  stage_.responses = stepper.stats().responses;
+}
+
+}  // namespace
+
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const WearControl& control) {
   const WearEffect& effect = *scene.wear;
-  wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction, effect.pad_fraction};
+  const wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction,
+                          effect.pad_fraction};
   WearStage stage;
   stage.rate_coefficient = law.rate_coefficient();
   stage.asymptote = wear_asymptote(scene, model, normal);
 
-  std::unique_ptr<WearContact> chosen = make_wear_contact(scene, model, normal);
+  const std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, normal);
   stage.route = wear_uses_incremental(scene) ? "incremental" : "analogy";
-  WearContact& contact = *chosen;
-  const int n = model.grid.n;
-  const double h = model.grid.h();
-  std::vector<double> w(n, 0.0);
-  wear::CycleResponse response;
-  contact.respond(w, response);
+  // The first response: the fastest wear, and the explicit stability limit.
+  wear::CycleResponse first;
+  contact->respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);
   double rate_max = 0.0, s_max = 0.0;
-  for (int i = 0; i < n; ++i) {
-    rate_max = std::max(rate_max, stage.rate_coefficient * response.p[i] * response.s[i]);
-    s_max = std::max(s_max, response.s[i]);
+  for (int i = 0; i < model.grid.n; ++i) {
+    rate_max = std::max(rate_max, stage.rate_coefficient * first.p[i] * first.s[i]);
+    s_max = std::max(s_max, first.s[i]);
   }
-  stage.stability_limit = wear::explicit_stability_limit(h, model.pair.E_star(), stage.rate_coefficient, s_max);
+  stage.stability_limit =
+      wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), stage.rate_coefficient, s_max);
 
-  auto record = [&](const std::vector<double>& state, double cycles) {
-    wear::CycleResponse r;
-    contact.respond(state, r);
-    WearRecord rec;
-    rec.cycles = cycles;
-    rec.w = state;
-    rec.p = r.p;
-    rec.s = r.s;
-    rec.q = contact.shear_top();
-    rec.Q_max = contact.Q_top();
-    for (int i = 0; i < n; ++i) {
-      rec.worn_area += state[i] * h;
-      rec.max_depth = std::max(rec.max_depth, state[i]);
-      rec.p_max = std::max(rec.p_max, r.p[i]);
-    }
-    if (r.has_stick) rec.stick_zone = Interval{r.stick_left, r.stick_right};
-    std::vector<double> g0w(n);
-    for (int i = 0; i < n; ++i) g0w[i] = model.g0[i] + state[i];
-    const auto zones = locate_zones(model.grid, r.p, g0w);
-    if (!zones.empty()) rec.contact = {zones.front().left.x, zones.back().right.x};
-    rec.fraction = stage.asymptote.worn_area > 0.0 ? rec.worn_area / stage.asymptote.worn_area : 0.0;
-    stage.records.push_back(std::move(rec));
-  };
-
-  const std::vector<double> times = record_times(effect);
-  stage.cycles_reached = times.back();
+  WearRun run(scene, model, control, *contact, stage);
   if (rate_max == 0.0) {  // nothing slips: nothing wears
-    for (double t : times) record(w, t);
+    run.record_unworn();
     return stage;
   }
-
-  // Drives `stepper` from the start or from control.resume; save/restore carry the stepper's own state.
-  auto drive = [&](auto& stepper, auto system, double dN, auto save, auto restore) {
-    DriveState s{times.front(), dN, 0, 0};
-    if (control.resume) {
-      const json& j = *control.resume;
-      s = resume_wear(j, scene, w, stage.records);
-      contact.restore(j.at("contact"));
-      restore(j.at("stepper_state"));
-      stage.resumed_from = s.N;
-    }
-    using clock = std::chrono::steady_clock;
-    auto last_checkpoint = clock::now();
-    auto boundary = [&](const DriveState& st, bool recorded) {
-      if (control.progress) {
-        double area = 0.0;
-        for (double wi : w) area += wi * h;
-        control.progress({st.N, times.back(), st.dt,
-                          stage.asymptote.worn_area > 0.0 ? area / stage.asymptote.worn_area : 0.0, int(st.steps)});
-      }
-      const bool stop = control.stop_requested && control.stop_requested();
-      const bool due = std::chrono::duration<double>(clock::now() - last_checkpoint).count() >=
-                       control.checkpoint_interval;
-      if (!control.checkpoint.empty() && (recorded || stop || due)) {
-        write_checkpoint(control.checkpoint, wear_checkpoint(scene, control.scene_hash, st, times.back(), w,
-                                                             stage.records, contact.save(), save()));
-        last_checkpoint = clock::now();
-      }
-      return !stop;
-    };
-    stage.interrupted = !drive_times(stepper, system, w, times, s, record, boundary);
-    stage.cycles_reached = s.N;
-    return s;
-  };
-
-  if (effect.stepper == "explicit") {
-    // abs: the tolerance on the scale of the depth the run wears toward, as the implicit stepper's max-norm.
-    const double depth = stage.asymptote.max_depth > 0.0 ? stage.asymptote.max_depth : rate_max * effect.cycles;
-    stage.explicit_step_cap = kExplicitCapFraction * stage.stability_limit;
-    wear::ExplicitWearStepper stepper(effect.tolerance * depth, effect.tolerance, stage.explicit_step_cap);
-    wear::WearRateSystem rate(contact, stage.rate_coefficient);
-    const double dN = std::min(stage.explicit_step_cap, std::max(1.0, effect.tolerance * depth / rate_max));
-    drive(
-        stepper, std::ref(rate), dN, [&] { return save_explicit(stepper, rate); },
-        [&](const json& j) { restore_explicit(j, stepper, rate, w); });
-    stage.steps = stepper.stats().accepted;
-    stage.rejected_steps = stepper.stats().rejected;
-    stage.explicit_max_step = stepper.stats().max_step;
-    stage.responses = int(rate.evaluations());
-  } else if (effect.stepper == "cycle_by_cycle") {
-    if (const std::string problem = cycle_by_cycle_problem(stage.stability_limit); !problem.empty())
-      throw UnsupportedError(problem);
-    wear::WearRateSystem rate(contact, stage.rate_coefficient);
-    AlwaysAccepted<wear::CycleByCycleStepper> stepper;
-    const DriveState s = drive(
-        stepper, std::ref(rate), wear::kCycle, [&] { return save_cycle_by_cycle(rate); },
-        [&](const json& j) { restore_cycle_by_cycle(j, rate); });
-    stage.steps = int(s.steps);
-    stage.responses = int(rate.evaluations());
-  } else {
-    // First jump: a small share of the asymptote's depth at the initial rate, bounded by the first record.
-    const double dN = std::max(1.0, effect.tolerance * stage.asymptote.max_depth / rate_max);
-    wear::ImplicitWearStepper stepper(stage.rate_coefficient, effect.tolerance);
-    try {
-    drive(
-        stepper, wear::ResponseRef{&contact}, dN, [&] { return save_implicit(stepper); },
-        [&](const json& j) { restore_implicit(j, stepper); });
-    } catch (const wear::ImplicitSolveFailure& e) {
-      const SolveSummary& last = contact.last_unconverged;
-      throw ConvergenceError(fmt::format("{} ({}, residual {:.3g})", e.what(), to_string(last.termination),
-                                         last.residual));
-    }
-    stage.steps = stepper.stats().accepted;
-    stage.unconverged_steps = stepper.stats().unconverged;
-    stage.rejected_steps = stepper.stats().rejected;
-    stage.implicit_solves = stepper.stats().implicit_solves;
-    stage.responses = stepper.stats().responses;
-  }
-  stage.mean_iterations_cycle = double(contact.cycle_iterations) / double(std::max(1L, contact.cycle_solves));
-  stage.mean_iterations_implicit = double(contact.implicit_iterations) / double(std::max(1L, contact.implicit_solves));
+  if (effect.stepper == "explicit")
+    run.drive_explicit(rate_max);
+  else if (effect.stepper == "cycle_by_cycle")
+    run.drive_cycle_by_cycle();
+  else
+    run.drive_implicit(rate_max);
+  stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
+  stage.mean_iterations_implicit =
+      double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
   return stage;
 }
 

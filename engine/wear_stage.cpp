@@ -198,7 +198,7 @@ bool WearRun::boundary(const DriveState& at, bool recorded, Save& save) {
   const double fraction = stage_.asymptote.worn_area > 0.0 ? area / stage_.asymptote.worn_area : 0.0;
   const WearProgress progress{at.N, times_.back(), at.dt, fraction, int(at.steps)};
   if (control_.progress) control_.progress(progress);
-  const bool stop = control_.stop_requested && control_.stop_requested();
+  const bool stop = control_.stop_requested && control_.stop_requested(progress);
   const bool due =
       std::chrono::duration<double>(clock::now() - last_checkpoint_).count() >= control_.checkpoint_interval;
   if (!control_.checkpoint.empty() && (recorded || stop || due)) {

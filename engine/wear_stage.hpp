@@ -75,7 +75,9 @@ struct WearProgress {
 
 struct WearControl {
   std::function<void(const WearProgress&)> progress;  // may be empty
-  std::function<bool()> stop_requested;               // true: stop at this boundary (a checkpoint is written)
+  // Asked at every boundary, with where the run stands: true stops the run there (a checkpoint is written). May be
+  // empty.
+  std::function<bool(const WearProgress&)> stop_requested;
   std::filesystem::path checkpoint;                   // where checkpoints go; empty: none
   double checkpoint_interval = 60.0;                  // seconds between checkpoints between records (0: every step)
   std::uint64_t scene_hash = 0;                       // scene_hash(scene), stored in the checkpoint

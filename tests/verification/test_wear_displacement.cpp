@@ -257,7 +257,7 @@ TEST_CASE("a displacement-controlled wear run resumed from a checkpoint ends as 
     stop.checkpoint_interval = 0.0;
     stop.scene_hash = scene_hash(scene);
     int boundaries = 0;
-    stop.stop_requested = [&boundaries] { return ++boundaries == 12; };
+    stop.stop_requested = [&boundaries](const WearProgress&) { return ++boundaries == 12; };
     const Run stopped = run(scene, stop);
     REQUIRE(stopped.wear.interrupted);
     REQUIRE(std::filesystem::exists(path));

@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "engine/checkpoint.hpp"
 #include "engine/convergence.hpp"
 #include "engine/deferred_signals.hpp"
 #include "engine/folder.hpp"
@@ -222,11 +223,20 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
   if (!quiet) std::cerr << fmt::format("fretwear: {}: normal contact on {} cells\n", scene.name, scene.cells);
   ProgressLine progress(!quiet, ::isatty(STDERR_FILENO) != 0);
   if (scene.wear) {
-    // FRETWEAR_STEP_PAUSE_MS (tests only): a pause at each step boundary, so that a test's signal lands mid-run.
-    const char* pause = std::getenv("FRETWEAR_STEP_PAUSE_MS");
-    const int pause_ms = pause ? std::atoi(pause) : 0;
-    control.stop_requested = [pause_ms] {
+    // Tests only, at each step boundary: FRETWEAR_STEP_PAUSE_MS, a pause, so that a test's signal lands mid-run;
+    // FRETWEAR_STOP_AT_STEP=N, SIGINT raised at the first boundary after N accepted steps (a Ctrl-C there, exactly);
+    // FRETWEAR_KILL_AT_STEP=N, the end SIGKILL would give there (status 137, nothing written after the checkpoint of
+    // the boundary before).
+    auto env_int = [](const char* name) {
+      const char* v = std::getenv(name);
+      return v ? std::atoi(v) : 0;
+    };
+    const int pause_ms = env_int("FRETWEAR_STEP_PAUSE_MS");
+    const int stop_at = env_int("FRETWEAR_STOP_AT_STEP"), kill_at = env_int("FRETWEAR_KILL_AT_STEP");
+    control.stop_requested = [pause_ms, stop_at, kill_at](const WearProgress& p) {
       if (pause_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(pause_ms));
+      if (kill_at > 0 && p.steps >= kill_at) ::_exit(kExitSignal + SIGKILL);
+      if (stop_at > 0 && p.steps >= stop_at && g_signal == 0) std::raise(SIGINT);
       return g_signal != 0;
     };
     if (progress.enabled()) control.progress = [&progress](const WearProgress& p) { progress.update(p); };

@@ -2,335 +2,24 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <functional>
-#include <iterator>
-#include <limits>
 #include <memory>
-#include <thread>
 
-#include <boost/numeric/odeint/integrate/max_step_checker.hpp>
-#include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <unistd.h>
 
-#include "contact/contact_zones.hpp"
 #include "common/error.hpp"
-#include "contact/half_plane_kernel.hpp"
-#include "engine/deferred_signals.hpp"
+#include "engine/checkpoint.hpp"
 #include "engine/simulation.hpp"
-#include "engine/version.hpp"
+#include "engine/wear_contacts.hpp"
+#include "engine/wear_driver.hpp"
+#include "wear/implicit_stepper.hpp"
+#include "wear/reference_steppers.hpp"
 #include "wear/wear_law.hpp"
 
 namespace fretwear {
 
-bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model, double P,
-                                 std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
-  const int n = model.grid.n;
-  gap_.resize(n);
-  for (int i = 0; i < n; ++i) gap_[i] = model.g0[i] + w[i];
-  implicit_.p = p;
-  const SolveSummary s = solver.solve(gap_, P, implicit_, d);
-  ++implicit_solves;
-  implicit_iterations += s.iterations;
-  if (!s.converged()) {
-    last_unconverged = s;
-    return false;
-  }
-  p = implicit_.p;
-  return true;
-}
-
-AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model)
-    : scene_(scene), model_(model), solver_(*model.kernel, worn_options()), implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
-  const double f = *scene.friction;
-  tilt_ = model.pair.bulk_strain(scene.bulk_stress) / f;
-  corrective_load_ = scene.P - scene.Q_max() / f;
-  if (!(corrective_load_ > 0.0))
-    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
-                                       "under force control the slip, hence the wear, is not determined; prescribe "
-                                       "the displacement instead (load.control \"displacement\" with load.delta)",
-                                       scene.Q_max(), f * scene.P));
-}
-
-int AnalogyContactResponse::cells() const { return model_.grid.n; }
-double AnalogyContactResponse::cell_width() const { return model_.grid.h(); }
-
-void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
-  const Grid& grid = model_.grid;
-  const int n = grid.n;
-  gap_.resize(n);
-  for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
-  auto check = [this](const SolveSummary& s, const char* what) {
-    ++cycle_solves;
-    cycle_iterations += s.iterations;
-    if (!s.converged())
-      throw ConvergenceError(fmt::format("wear: the {} solve on the worn profile stopped ({}) with residual {:.3g}",
-                                         what, to_string(s.termination), s.residual));
-  };
-  if (int(out.p.size()) == n) normal_.p = out.p;
-  check(solver_.solve(gap_, scene_.P, normal_), "normal");
-  for (int i = 0; i < n; ++i) gap_[i] -= tilt_ * grid.x(i);
-  check(solver_.solve(gap_, corrective_load_, corrective_), "corrective");
-  const double f = *scene_.friction;
-  out.p = normal_.p;
-  out.s.assign(n, 0.0);
-  q_top_.resize(n);  // q = f (p − p*) at the top of the cycle
-  for (int i = 0; i < n; ++i) {
-    if (corrective_.p[i] > 0.0 && !(normal_.p[i] > 0.0))
-      throw UnsupportedError(fmt::format("effects.wear: the worn contact slips backwards at its leading edge (reverse "
-                                         "slip at x = {:.6g} m), which the analogy route cannot follow; set "
-                                         "effects.tangential.route to \"incremental\"",
-                                         grid.x(i)));
-    if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
-    q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
-  }
-  stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);
-  out.has_stick = !stick_zones_.empty();
-  if (out.has_stick) out.stick_left = stick_zones_.front().left.x, out.stick_right = stick_zones_.back().right.x;
-}
-
-bool AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
-                                               std::vector<double>& p) {
-  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
-}
-
-bool wear_uses_incremental(const Scene& scene) {
-  return scene.control == LoadControl::displacement ||
-         (scene.tangential && scene.tangential->route == TangentialRoute::incremental);
-}
-
-namespace {
-
-IncrementalSlipOptions incremental_options(const Scene& scene) {
-  IncrementalSlipOptions o;
-  o.increments_per_cycle = scene.tangential->increments;
-  return o;
-}
-
-CyclicLoad incremental_load(const Scene& scene, const Model& model) {
-  const double strain = model.pair.bulk_strain(scene.bulk_stress);
-  const bool displacement = scene.control == LoadControl::displacement;
-  return {scene.P, displacement ? 0.0 : scene.Q_max(), *scene.friction, strain, displacement ? *scene.delta : 0.0};
-}
-
-}  // namespace
-
-IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x,
-                                                       double reference_depth)
-    : scene_(scene),
-      model_(model),
-      solver_(*model.kernel, worn_options()),
-      implicit_solver_(*model.kernel, implicit_options(model.grid.n)),
-      slip_(*model.kernel, incremental_options(scene)),
-      datum_(model.grid, model.pair, reference_x, reference_depth),
-      load_(incremental_load(scene, model)) {
-  if (!scene.history.empty())
-    throw UnsupportedError("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
-                           "repeated between fixed limits of Q or of the displacement");
-  if (scene.control == LoadControl::force && !(scene.Q_max() < *scene.friction * scene.P))
-    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
-                                       "under force control the slip, hence the wear, is not determined; prescribe "
-                                       "the displacement instead (load.control \"displacement\" with load.delta)",
-                                       scene.Q_max(), *scene.friction * scene.P));
-}
-
-int IncrementalContactResponse::cells() const { return model_.grid.n; }
-double IncrementalContactResponse::cell_width() const { return model_.grid.h(); }
-
-void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
-  const Grid& grid = model_.grid;
-  const int n = grid.n;
-  gap_.resize(n);
-  for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
-  if (int(out.p.size()) == n) normal_.p = out.p;
-  const SolveSummary s = solver_.solve(gap_, scene_.P, normal_);
-  ++cycle_solves;
-  cycle_iterations += s.iterations;
-  if (!s.converged())
-    throw ConvergenceError(fmt::format("wear: the normal solve on the worn profile stopped ({}) with residual {:.3g}",
-                                       to_string(s.termination), s.residual));
-  if (normal_.p.front() > 0.0 || normal_.p.back() > 0.0)
-    throw InputError(fmt::format("grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the "
-                                 "contact widens as it wears (in gross slip without limit): widen grid.window, or "
-                                 "wear fewer cycles",
-                                 normal_.p.front() > 0.0 ? "left" : "right",
-                                 normal_.p.front() > 0.0 ? grid.x_min : grid.x_max));
-  const IncrementalResult r = slip_.solve(normal_, load_, &datum_);
-  cycle_solves += r.n_increments;
-  cycle_iterations += r.n_iterations;
-  cycle_ = r.cycles.back();
-  if (cycle_.slip_travelled.empty())  // force control at Q ≥ f P: refused by the constructor
-    throw UnsupportedError("effects.wear: " + cycle_.message);
-  out.p = normal_.p;
-  out.s = cycle_.slip_travelled;
-  for (int i = 0; i < n; ++i)
-    if (!(normal_.p[i] > 0.0)) out.s[i] = 0.0;
-  out.has_stick = cycle_.stick_zone.has_value();
-  out.stick_left = out.stick_right = 0.0;
-  if (out.has_stick) out.stick_left = cycle_.stick_zone->first, out.stick_right = cycle_.stick_zone->second;
-}
-
-bool IncrementalContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
-                                                   std::vector<double>& p) {
-  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
-}
-
-namespace {
-
-using nlohmann::json;
-
-// Vectors travel as raw doubles (exact, ±inf included), little-endian on every platform fretwear builds on.
-json blob(const std::vector<double>& v) {
-  std::vector<std::uint8_t> bytes(v.size() * sizeof(double));
-  if (!v.empty()) std::memcpy(bytes.data(), v.data(), bytes.size());
-  return json::binary(std::move(bytes));
-}
-
-std::vector<double> unblob(const json& j) {
-  const auto& bytes = j.get_binary();
-  if (bytes.size() % sizeof(double) != 0) throw InputError("checkpoint: a vector of the wrong size");
-  std::vector<double> v(bytes.size() / sizeof(double));
-  if (!v.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
-  return v;
-}
-
-json state_json(const ContactState& s) { return {{"p", blob(s.p)}, {"gap", blob(s.gap)}, {"approach", s.approach}}; }
-
-void state_from(const json& j, ContactState& s) {
-  s.p = unblob(j.at("p"));
-  s.gap = unblob(j.at("gap"));
-  s.approach = j.at("approach").get<double>();
-}
-
-}  // namespace
-
-json AnalogyContactResponse::save() const {
-  return {{"normal", state_json(normal_)},
-          {"corrective", state_json(corrective_)},
-          {"implicit", state_json(implicit_)},
-          {"cycle_solves", cycle_solves},
-          {"cycle_iterations", cycle_iterations},
-          {"implicit_solves", implicit_solves},
-          {"implicit_iterations", implicit_iterations}};
-}
-
-void AnalogyContactResponse::restore(const json& j) {
-  state_from(j.at("normal"), normal_);
-  state_from(j.at("corrective"), corrective_);
-  state_from(j.at("implicit"), implicit_);
-  cycle_solves = j.at("cycle_solves").get<long>();
-  cycle_iterations = j.at("cycle_iterations").get<long>();
-  implicit_solves = j.at("implicit_solves").get<long>();
-  implicit_iterations = j.at("implicit_iterations").get<long>();
-}
-
-json IncrementalContactResponse::save() const {
-  return {{"route", "incremental"},
-          {"normal", state_json(normal_)},
-          {"implicit", state_json(implicit_)},
-          {"cycle_solves", cycle_solves},
-          {"cycle_iterations", cycle_iterations},
-          {"implicit_solves", implicit_solves},
-          {"implicit_iterations", implicit_iterations}};
-}
-
-void IncrementalContactResponse::restore(const json& j) {
-  if (j.value("route", "") != "incremental") throw InputError("checkpoint: written by the analogy route's wear run");
-  state_from(j.at("normal"), normal_);
-  state_from(j.at("implicit"), implicit_);
-  cycle_solves = j.at("cycle_solves").get<long>();
-  cycle_iterations = j.at("cycle_iterations").get<long>();
-  implicit_solves = j.at("implicit_solves").get<long>();
-  implicit_iterations = j.at("implicit_iterations").get<long>();
-}
-
-std::filesystem::path checkpoint_path(const Scene& scene) {
-  std::filesystem::path p = scene.output_dir;
-  if (!p.has_filename()) p = p.parent_path();  // "output/x/" names the folder x
-  p += ".checkpoint";
-  return p;
-}
-
-std::uint64_t scene_hash(const Scene& scene) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const unsigned char c : scene.to_json().dump()) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
-
-std::optional<json> read_checkpoint(const std::filesystem::path& path, const Scene& scene) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
-  json j = json::from_cbor(bytes, true, false);
-  if (j.is_discarded() || !j.is_object() || j.value("format", "") != "fretwear-checkpoint")
-    throw InputError(fmt::format("{}: not a fretwear checkpoint; delete it, or run without --resume", path.string()));
-  if (j.value("format_version", 0) != kCheckpointFormat || j.value("fretwear", "") != std::string(kVersion))
-    throw InputError(fmt::format("{}: written by fretwear {} (checkpoint format {}); this is fretwear {} (format {}): "
-                                 "it cannot be resumed. Delete it, or run without --resume",
-                                 path.string(), j.value("fretwear", "?"), j.value("format_version", 0), kVersion,
-                                 kCheckpointFormat));
-  const std::string want = fmt::format("{:016x}", scene_hash(scene));
-  if (j.value("scene_hash", "") != want)
-    throw InputError(fmt::format("{}: the checkpoint belongs to another scene (\"{}\", hash {}; this scene \"{}\" "
-                                 "resolves to hash {}): refused. Delete it, or run without --resume",
-                                 path.string(), j.value("scene", "?"), j.value("scene_hash", "?"), scene.name, want));
-  return j;
-}
-
-void write_checkpoint(const std::filesystem::path& path, const json& j) {
-  const std::vector<std::uint8_t> bytes = json::to_cbor(j);
-  const DeferredStopSignals hold;  // no temporary file left by a signal
-  if (path.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(path.parent_path(), ec);  // an error shows at open()
-  }
-  std::filesystem::path tmp = path;
-  tmp += fmt::format(".tmp-{}", ::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t k = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) {
-      const int e = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(e)));
-    }
-    done += std::size_t(k);
-  }
-  // FRETWEAR_CHECKPOINT_PAUSE_MS (tests only): a pause with the temporary file written, so that a test's signals
-  // land while the checkpoint is being put in place.
-  if (const char* pause = std::getenv("FRETWEAR_CHECKPOINT_PAUSE_MS"))
-    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    ::unlink(tmp.c_str());
-    throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    ::unlink(tmp.c_str());
-    throw Error(fmt::format("cannot move the checkpoint into {}: {}", path.string(), std::strerror(errno)));
-  }
-  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir >= 0) {
-    ::fsync(dir);
-    ::close(dir);
-  }
-}
-
-WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal) {
+WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& /*normal*/) {
   WearAsymptote a;
   if (scene.control == LoadControl::displacement) {
     a.unavailable = "under displacement control Q_max follows the prescribed displacement as the contact wears, so the "
@@ -340,191 +29,18 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
                     "slip there is no stick zone and the wear never stops";
     return a;
   }
-  // The stick zone of the first cycle, located to sub-cell accuracy.
+  // The stick zones of the first cycle, located to sub-cell accuracy (one per run of the corrective contact).
   AnalogyContactResponse contact(scene, model);
   wear::CycleResponse first;
   try {
-    contact.respond(std::vector<double>(model.grid.n, 0.0), first);
+    contact.respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);
   } catch (const UnsupportedError& e) {  // reverse slip: the incremental route wears it, with no asymptote here
     a.unavailable = std::string("the analogy route cannot give the initial stick zone: ") + e.what();
     return a;
   }
-  (void)normal;
-  const Grid& grid = model.grid;
-  const int n = grid.n;
-  a.w.assign(n, 0.0);
-  a.p.assign(n, 0.0);
-  if (!first.has_stick) return a;
-  // The limit is a complete contact over the stick zones [c_l, c_r] (one per contact zone where there are several,
-  // e.g. two asperities: paper 002 §2 allows any number): on a grid whose cell boundaries fall on c_l and c_r, its
-  // corners are exact, as for a sharp punch (whole cells of the contact grid would misplace them by up to h/2).
-  // With several zones the grid is aligned to the first; the others' corners are placed to within half a cell.
-  const std::vector<Zone> zones = contact.stick_zones();
-  auto stuck = [&zones](double x) {
-    return std::any_of(zones.begin(), zones.end(), [x](const Zone& z) { return x > z.left.x && x < z.right.x; });
-  };
-  const double cl = zones.front().left.x, cr = zones.front().right.x;
-  const double h = (cr - cl) / std::max(1.0, std::round((cr - cl) / grid.h()));
-  const double lo = cl - std::round((cl - grid.x_min) / h) * h;
-  const Grid aligned{lo, lo + n * h, n};
-  const HalfPlaneKernel kernel(aligned, model.pair.A());
-  std::vector<double> g0(n), g(n);
-  for (int i = 0; i < n; ++i) {
-    g0[i] = model.profile.gap(aligned.x(i));
-    g[i] = stuck(aligned.x(i)) ? g0[i] : std::numeric_limits<double>::infinity();
-  }
-  ContactState state;
-  const NormalSolver solver(kernel);
-  const SolveSummary s = solver.solve(g, scene.P, state);
-  if (!s.converged())
-    throw ConvergenceError(fmt::format("wear: the asymptotic complete-contact solve stopped ({}) with residual {:.3g}",
-                                       to_string(s.termination), s.residual));
-  std::vector<double> u(n), w(n, 0.0);
-  kernel.apply(state.p, u);
-  a.extent = {aligned.x_max, aligned.x_min};
-  for (int i = 0; i < n; ++i) {
-    if (std::isfinite(g[i]) || !std::isfinite(g0[i])) continue;
-    const double overlap = -(g0[i] + u[i] - state.approach);
-    if (overlap <= 0.0) continue;
-    w[i] = overlap;
-    a.worn_area += overlap * h;
-    if (overlap > a.max_depth) a.max_depth = overlap, a.x_max_depth = aligned.x(i);
-    a.extent = {std::min(a.extent.first, aligned.left(i)), std::max(a.extent.second, aligned.left(i + 1))};
-  }
-  // On the contact grid (the grids differ by less than a cell): linear interpolation between aligned centres.
-  auto on_aligned = [&](const std::vector<double>& v, double x) {
-    const double t = (x - aligned.x_min) / h - 0.5;
-    const int i = std::clamp(int(std::floor(t)), 0, n - 2);
-    const double f = std::clamp(t - i, 0.0, 1.0);
-    return (1.0 - f) * v[i] + f * v[i + 1];
-  };
-  for (int i = 0; i < n; ++i) {
-    a.w[i] = on_aligned(w, grid.x(i));
-    a.p[i] = stuck(grid.x(i)) ? on_aligned(state.p, grid.x(i)) : 0.0;
-  }
+  static_cast<WearLimit&>(a) = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, contact.stick_zones());
   return a;
 }
-
-namespace {
-
-// Record times: the scene's list, or `count` log-spaced from cycles/10⁴ (at least 1) to cycles; always 0 first.
-std::vector<double> record_times(const WearEffect& w) {
-  std::vector<double> t{0.0};
-  if (!w.record.empty()) {
-    t.insert(t.end(), w.record.begin(), w.record.end());
-  } else {
-    const double first = std::max(1.0, w.cycles * 1e-4);
-    const int k = w.record_count;
-    for (int i = 0; i < k; ++i) {
-      const double x = k == 1 ? w.cycles : first * std::pow(w.cycles / first, double(i) / (k - 1));
-      const double rounded = std::round(x);
-      if (rounded > t.back()) t.push_back(std::min(rounded, w.cycles));
-    }
-  }
-  if (t.back() < w.cycles) t.push_back(w.cycles);
-  return t;
-}
-
-// Where the driver stands between two steps: all a resumed run needs besides the state w and the steppers' own.
-struct DriveState {
-  double N = 0.0;         // cycles done
-  double dt = 0.0;        // the step size to try next (cycles)
-  std::size_t next = 0;   // index of the next record time to observe
-  long steps = 0;         // accepted steps
-};
-
-// odeint's integrate_times for a controlled stepper (boost/numeric/odeint/integrate/detail/integrate_times.hpp),
-// step for step, with its loop state held in `s` instead of locals, so that it can stop at any step boundary and be
-// continued later from a saved `s`: observe(w, t) at each record time, then boundary(s, true); boundary(s, false)
-// after each accepted step. A false from boundary stops the run (false is returned) unless all is recorded.
-template <class Stepper, class System, class Observe, class Boundary>
-bool drive_times(Stepper& stepper, System system, std::vector<double>& w, const std::vector<double>& times,
-                 DriveState& s, Observe observe, Boundary boundary) {
-  namespace odeint = boost::numeric::odeint;
-  odeint::failed_step_checker checker;
-  auto before = [](double t1, double t2) { return t2 - t1 > std::numeric_limits<double>::epsilon(); };
-  while (s.next < times.size()) {
-    while (before(s.N, times[s.next])) {
-      double current = std::min(s.dt, times[s.next] - s.N);  // end exactly on the record time
-      if (stepper.try_step(system, w, s.N, current) == odeint::controlled_step_result::success) {
-        ++s.steps;
-        checker.reset();
-        s.dt = std::max(s.dt, current);  // continue with the step size the record time had cut
-        if (!boundary(s, false)) return false;
-      } else {
-        checker();
-        s.dt = current;
-      }
-    }
-    observe(w, times[s.next]);
-    ++s.next;
-    if (!boundary(s, true) && s.next < times.size()) return false;
-  }
-  return true;
-}
-
-// A stepper without error control (odeint's euler) in the controlled interface: every step succeeds at the size asked.
-template <class Stepper>
-struct AlwaysAccepted {
-  Stepper stepper;
-  template <class System>
-  boost::numeric::odeint::controlled_step_result try_step(System system, std::vector<double>& w, double& N,
-                                                          double& dN) {
-    stepper.do_step(system, w, N, dN);
-    N += dN;
-    return boost::numeric::odeint::controlled_step_result::success;
-  }
-};
-
-json record_json(const WearRecord& r) {
-  return {{"cycles", r.cycles},
-          {"worn_area", r.worn_area},
-          {"max_depth", r.max_depth},
-          {"p_max", r.p_max},
-          {"Q_max", r.Q_max},
-          {"stick_zone", r.stick_zone ? json{r.stick_zone->first, r.stick_zone->second} : json(nullptr)},
-          {"contact", {r.contact.first, r.contact.second}},
-          {"fraction", r.fraction},
-          {"w", blob(r.w)},
-          {"p", blob(r.p)},
-          {"s", blob(r.s)},
-          {"q", blob(r.q)}};
-}
-
-WearRecord record_from(const json& j) {
-  WearRecord r;
-  r.cycles = j.at("cycles").get<double>();
-  r.worn_area = j.at("worn_area").get<double>();
-  r.max_depth = j.at("max_depth").get<double>();
-  r.p_max = j.at("p_max").get<double>();
-  r.Q_max = j.value("Q_max", 0.0);
-  if (!j.at("stick_zone").is_null()) r.stick_zone = Interval{j["stick_zone"][0], j["stick_zone"][1]};
-  r.contact = {j.at("contact")[0].get<double>(), j.at("contact")[1].get<double>()};
-  r.fraction = j.at("fraction").get<double>();
-  r.w = unblob(j.at("w"));
-  r.p = unblob(j.at("p"));
-  r.s = unblob(j.at("s"));
-  r.q = unblob(j.at("q"));
-  return r;
-}
-
-}  // namespace
-
-
-namespace {
-
-// The contact the wear stage sees: the incremental route under displacement control or when the scene asks for it,
-// the analogy otherwise.
-std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const NormalResult& normal) {
-  if (!wear_uses_incremental(scene)) return std::make_unique<AnalogyContactResponse>(scene, model);
-  // The datum of the cycle stage (engine/simulation.cpp, solve_cycle): the centre of the unworn contact, 10
-  // half-widths (or grid.reference_depth) below it.
-  const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
-  const double depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
-  return std::make_unique<IncrementalContactResponse>(scene, model, 0.5 * (x_left + x_right), depth);
-}
-
-}  // namespace
 
 std::string cycle_by_cycle_problem(double stability_limit) {
   if (stability_limit > wear::kCycle || stability_limit == 0.0) return {};
@@ -558,202 +74,226 @@ WearEstimate estimate_wear(const Scene& scene, const Model& model, const NormalR
   return e;
 }
 
+namespace {
+
+using nlohmann::json;
+
+// Record times: the scene's list, or `count` log-spaced from cycles/10⁴ (at least 1) to cycles; always 0 first.
+std::vector<double> record_times(const WearEffect& w) {
+  std::vector<double> t{0.0};
+  if (!w.record.empty()) {
+    t.insert(t.end(), w.record.begin(), w.record.end());
+  } else {
+    const double first = std::max(1.0, w.cycles * 1e-4);
+    const int k = w.record_count;
+    for (int i = 0; i < k; ++i) {
+      const double x = k == 1 ? w.cycles : first * std::pow(w.cycles / first, double(i) / (k - 1));
+      const double rounded = std::round(x);
+      if (rounded > t.back()) t.push_back(std::min(rounded, w.cycles));
+    }
+  }
+  if (t.back() < w.cycles) t.push_back(w.cycles);
+  return t;
+}
+
+// One wear run under way: the worn state w on the contact, driven by a stepper through the record times, recorded
+// into the stage, and steered by the control at every step boundary (progress, a stop, checkpoints).
+class WearRun {
+ public:
+  WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage)
+      : scene_(scene),
+        effect_(*scene.wear),
+        model_(model),
+        control_(control),
+        contact_(contact),
+        stage_(stage),
+        times_(record_times(effect_)),
+        w_(std::size_t(model.grid.n), 0.0) {
+    stage_.cycles_reached = times_.back();  // until a stop says otherwise
+  }
+
+  // Nothing slips, nothing wears: every record is of the unworn contact.
+  void record_unworn() {
+    for (double t : times_) record(w_, t);
+  }
+
+  // The three steppers; rate_max = max c p s at the start (m/cycle) sets the first step.
+  void drive_explicit(double rate_max);
+  void drive_cycle_by_cycle();
+  void drive_implicit(double rate_max);
+
+ private:
+  // The record of `state` at `cycles`: one response on it.
+  void record(const std::vector<double>& state, double cycles);
+  // Drives `stepper` from the start, or from control.resume (save/restore carry the stepper's own state, as
+  // engine/checkpoint.hpp's schemas), to the last record or a stop; the stage learns where it stopped.
+  template <class Stepper, class System, class Save, class Restore>
+  DriveState drive(Stepper& stepper, System system, double dN, Save save, Restore restore);
+  // At each step boundary: progress, the stop request, a checkpoint when one is due. False: stop.
+  template <class Save>
+  bool boundary(const DriveState& at, bool recorded, Save& save);
+
+  using clock = std::chrono::steady_clock;
+  const Scene& scene_;
+  const WearEffect& effect_;
+  const Model& model_;
+  const WearControl& control_;
+  WearContact& contact_;
+  WearStage& stage_;
+  const std::vector<double> times_;
+  std::vector<double> w_;
+  clock::time_point last_checkpoint_;
+};
+
+void WearRun::record(const std::vector<double>& state, double cycles) {
+  const int n = model_.grid.n;
+  const double h = model_.grid.h();
+  wear::CycleResponse r;
+  contact_.respond(state, r);
+  WearRecord rec;
+  rec.cycles = cycles;
+  rec.w = state;
+  rec.p = r.p;
+  rec.s = r.s;
+  rec.q = contact_.shear_top();
+  rec.Q_max = contact_.Q_top();
+  for (int i = 0; i < n; ++i) {
+    rec.worn_area += state[i] * h;
+    rec.max_depth = std::max(rec.max_depth, state[i]);
+    rec.p_max = std::max(rec.p_max, r.p[i]);
+  }
+  if (r.has_stick) rec.stick_zone = Interval{r.stick_left, r.stick_right};
+  std::vector<double> g0w(n);
+  for (int i = 0; i < n; ++i) g0w[i] = model_.g0[i] + state[i];
+  const auto zones = locate_zones(model_.grid, r.p, g0w);
+  if (!zones.empty()) rec.contact = {zones.front().left.x, zones.back().right.x};
+  rec.fraction = stage_.asymptote.worn_area > 0.0 ? rec.worn_area / stage_.asymptote.worn_area : 0.0;
+  stage_.records.push_back(std::move(rec));
+}
+
+template <class Stepper, class System, class Save, class Restore>
+DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save, Restore restore) {
+  DriveState s{times_.front(), dN, 0, 0};
+  if (control_.resume) {
+    const json& j = *control_.resume;
+    s = resume_wear(j, scene_, w_, stage_.records);
+    contact_.restore(j.at("contact"));
+    restore(j.at("stepper_state"));
+    stage_.resumed_from = s.N;
+  }
+  last_checkpoint_ = clock::now();
+  const bool completed = drive_times(
+      stepper, system, w_, times_, s, [this](const std::vector<double>& state, double N) { record(state, N); },
+      [this, &save](const DriveState& at, bool recorded) { return boundary(at, recorded, save); });
+  stage_.interrupted = !completed;
+  stage_.cycles_reached = s.N;
+  return s;
+}
+
+template <class Save>
+bool WearRun::boundary(const DriveState& at, bool recorded, Save& save) {
+  const double h = model_.grid.h();
+  double area = 0.0;
+  for (double wi : w_) area += wi * h;
+  const double fraction = stage_.asymptote.worn_area > 0.0 ? area / stage_.asymptote.worn_area : 0.0;
+  const WearProgress progress{at.N, times_.back(), at.dt, fraction, int(at.steps)};
+  if (control_.progress) control_.progress(progress);
+  const bool stop = control_.stop_requested && control_.stop_requested(progress);
+  const bool due =
+      std::chrono::duration<double>(clock::now() - last_checkpoint_).count() >= control_.checkpoint_interval;
+  if (!control_.checkpoint.empty() && (recorded || stop || due)) {
+    write_checkpoint(control_.checkpoint, wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_,
+                                                          stage_.records, contact_.save(), save()));
+    last_checkpoint_ = clock::now();
+  }
+  return !stop;
+}
+
+void WearRun::drive_explicit(double rate_max) {
+  // abs: the tolerance on the scale of the depth the run wears toward, as the implicit stepper's max-norm.
+  const double depth = stage_.asymptote.max_depth > 0.0 ? stage_.asymptote.max_depth : rate_max * effect_.cycles;
+  stage_.explicit_step_cap = kExplicitCapFraction * stage_.stability_limit;
+  wear::ExplicitWearStepper stepper(effect_.tolerance * depth, effect_.tolerance, stage_.explicit_step_cap);
+  wear::WearRateSystem rate(contact_, stage_.rate_coefficient);
+  const double dN = std::min(stage_.explicit_step_cap, std::max(1.0, effect_.tolerance * depth / rate_max));
+  drive(
+      stepper, std::ref(rate), dN, [&] { return save_explicit(stepper, rate); },
+      [&](const json& j) { restore_explicit(j, stepper, rate, w_); });
+  stage_.steps = stepper.stats().accepted;
+  stage_.rejected_steps = stepper.stats().rejected;
+  stage_.explicit_max_step = stepper.stats().max_step;
+  stage_.responses = int(rate.evaluations());
+}
+
+void WearRun::drive_cycle_by_cycle() {
+  if (const std::string problem = cycle_by_cycle_problem(stage_.stability_limit); !problem.empty())
+    throw UnsupportedError(problem);
+  wear::WearRateSystem rate(contact_, stage_.rate_coefficient);
+  AlwaysAccepted<wear::CycleByCycleStepper> stepper;
+  const DriveState s = drive(
+      stepper, std::ref(rate), wear::kCycle, [&] { return save_cycle_by_cycle(rate); },
+      [&](const json& j) { restore_cycle_by_cycle(j, rate); });
+  stage_.steps = int(s.steps);
+  stage_.responses = int(rate.evaluations());
+}
+
+void WearRun::drive_implicit(double rate_max) {
+  // First jump: a small share of the asymptote's depth at the initial rate, bounded by the first record.
+  const double dN = std::max(1.0, effect_.tolerance * stage_.asymptote.max_depth / rate_max);
+  wear::ImplicitWearStepper stepper(stage_.rate_coefficient, effect_.tolerance);
+  try {
+    drive(
+        stepper, wear::ResponseRef{&contact_}, dN, [&] { return save_implicit(stepper); },
+        [&](const json& j) { restore_implicit(j, stepper); });
+  } catch (const wear::ImplicitSolveFailure& e) {
+    const SolveSummary& last = contact_.last_unconverged;
+    throw ConvergenceError(fmt::format("{} ({}, residual {:.3g})", e.what(), to_string(last.termination),
+                                       last.residual));
+  }
+  stage_.steps = stepper.stats().accepted;
+  stage_.unconverged_steps = stepper.stats().unconverged;
+  stage_.rejected_steps = stepper.stats().rejected;
+  stage_.implicit_solves = stepper.stats().implicit_solves;
+  stage_.responses = stepper.stats().responses;
+}
+
+}  // namespace
+
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const WearControl& control) {
   const WearEffect& effect = *scene.wear;
-  wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction, effect.pad_fraction};
+  const wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction,
+                          effect.pad_fraction};
   WearStage stage;
   stage.rate_coefficient = law.rate_coefficient();
   stage.asymptote = wear_asymptote(scene, model, normal);
 
-  std::unique_ptr<WearContact> chosen = make_wear_contact(scene, model, normal);
+  const std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, normal);
   stage.route = wear_uses_incremental(scene) ? "incremental" : "analogy";
-  WearContact& contact = *chosen;
-  const int n = model.grid.n;
-  const double h = model.grid.h();
-  std::vector<double> w(n, 0.0);
-  wear::CycleResponse response;
-  contact.respond(w, response);
+  // The first response: the fastest wear, and the explicit stability limit.
+  wear::CycleResponse first;
+  contact->respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);
   double rate_max = 0.0, s_max = 0.0;
-  for (int i = 0; i < n; ++i) {
-    rate_max = std::max(rate_max, stage.rate_coefficient * response.p[i] * response.s[i]);
-    s_max = std::max(s_max, response.s[i]);
+  for (int i = 0; i < model.grid.n; ++i) {
+    rate_max = std::max(rate_max, stage.rate_coefficient * first.p[i] * first.s[i]);
+    s_max = std::max(s_max, first.s[i]);
   }
-  stage.stability_limit = wear::explicit_stability_limit(h, model.pair.E_star(), stage.rate_coefficient, s_max);
+  stage.stability_limit =
+      wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), stage.rate_coefficient, s_max);
 
-  auto record = [&](const std::vector<double>& state, double cycles) {
-    wear::CycleResponse r;
-    contact.respond(state, r);
-    WearRecord rec;
-    rec.cycles = cycles;
-    rec.w = state;
-    rec.p = r.p;
-    rec.s = r.s;
-    rec.q = contact.shear_top();
-    rec.Q_max = contact.Q_top();
-    for (int i = 0; i < n; ++i) {
-      rec.worn_area += state[i] * h;
-      rec.max_depth = std::max(rec.max_depth, state[i]);
-      rec.p_max = std::max(rec.p_max, r.p[i]);
-    }
-    if (r.has_stick) rec.stick_zone = Interval{r.stick_left, r.stick_right};
-    std::vector<double> g0w(n);
-    for (int i = 0; i < n; ++i) g0w[i] = model.g0[i] + state[i];
-    const auto zones = locate_zones(model.grid, r.p, g0w);
-    if (!zones.empty()) rec.contact = {zones.front().left.x, zones.back().right.x};
-    rec.fraction = stage.asymptote.worn_area > 0.0 ? rec.worn_area / stage.asymptote.worn_area : 0.0;
-    stage.records.push_back(std::move(rec));
-  };
-
-  const std::vector<double> times = record_times(effect);
-  stage.cycles_reached = times.back();
+  WearRun run(scene, model, control, *contact, stage);
   if (rate_max == 0.0) {  // nothing slips: nothing wears
-    for (double t : times) record(w, t);
+    run.record_unworn();
     return stage;
   }
-
-  // Drives `stepper` from the start or from control.resume; save/restore carry the stepper's own state.
-  auto drive = [&](auto& stepper, auto system, double dN, auto save, auto restore) {
-    DriveState s{times.front(), dN, 0, 0};
-    if (control.resume) {
-      const json& j = *control.resume;
-      if (j.at("stepper").get<std::string>() != effect.stepper || j.at("cells").get<int>() != n)
-        throw InputError("checkpoint: written by another stepper or grid");
-      s = {j.at("cycles").get<double>(), j.at("dN").get<double>(), j.at("next_record").get<std::size_t>(),
-           j.at("steps").get<long>()};
-      w = unblob(j.at("w"));
-      stage.records.clear();
-      for (const json& r : j.at("records")) stage.records.push_back(record_from(r));
-      contact.restore(j.at("contact"));
-      restore(j.at("stepper_state"));
-      stage.resumed_from = s.N;
-    }
-    using clock = std::chrono::steady_clock;
-    auto last_checkpoint = clock::now();
-    auto boundary = [&](const DriveState& st, bool recorded) {
-      if (control.progress) {
-        double area = 0.0;
-        for (double wi : w) area += wi * h;
-        control.progress({st.N, times.back(), st.dt,
-                          stage.asymptote.worn_area > 0.0 ? area / stage.asymptote.worn_area : 0.0, int(st.steps)});
-      }
-      const bool stop = control.stop_requested && control.stop_requested();
-      const bool due = std::chrono::duration<double>(clock::now() - last_checkpoint).count() >=
-                       control.checkpoint_interval;
-      if (!control.checkpoint.empty() && (recorded || stop || due)) {
-        json j = {{"format", "fretwear-checkpoint"},
-                  {"format_version", kCheckpointFormat},
-                  {"fretwear", kVersion},
-                  {"scene", scene.name},
-                  {"scene_hash", fmt::format("{:016x}", control.scene_hash)},
-                  {"stepper", effect.stepper},
-                  {"cells", n},
-                  {"cycles", st.N},
-                  {"cycles_total", times.back()},
-                  {"dN", st.dt},
-                  {"next_record", st.next},
-                  {"steps", st.steps},
-                  {"w", blob(w)},
-                  {"records", json::array()},
-                  {"contact", contact.save()},
-                  {"stepper_state", save()}};
-        for (const WearRecord& r : stage.records) j["records"].push_back(record_json(r));
-        write_checkpoint(control.checkpoint, j);
-        last_checkpoint = clock::now();
-      }
-      return !stop;
-    };
-    stage.interrupted = !drive_times(stepper, system, w, times, s, record, boundary);
-    stage.cycles_reached = s.N;
-    return s;
-  };
-
-  if (effect.stepper == "explicit") {
-    // abs: the tolerance on the scale of the depth the run wears toward, as the implicit stepper's max-norm.
-    const double depth = stage.asymptote.max_depth > 0.0 ? stage.asymptote.max_depth : rate_max * effect.cycles;
-    stage.explicit_step_cap = kExplicitCapFraction * stage.stability_limit;
-    wear::ExplicitWearStepper stepper(effect.tolerance * depth, effect.tolerance, stage.explicit_step_cap);
-    wear::WearRateSystem rate(contact, stage.rate_coefficient);
-    const double dN = std::min(stage.explicit_step_cap, std::max(1.0, effect.tolerance * depth / rate_max));
-    drive(
-        stepper, std::ref(rate), dN,
-        [&] {
-          const auto& st = stepper.stats();
-          const auto& last = rate.last_response();
-          return json{{"accepted", st.accepted}, {"rejected", st.rejected}, {"max_step", st.max_step},
-                      {"evaluations", rate.evaluations()}, {"p", blob(last.p)}, {"s", blob(last.s)},
-                      {"stick", {last.has_stick, last.stick_left, last.stick_right}}};
-        },
-        [&](const json& j) {
-          wear::CycleResponse last;
-          last.p = unblob(j.at("p"));
-          last.s = unblob(j.at("s"));
-          last.has_stick = j.at("stick")[0].get<bool>();
-          last.stick_left = j.at("stick")[1].get<double>();
-          last.stick_right = j.at("stick")[2].get<double>();
-          rate.restore(j.at("evaluations").get<long>(), std::move(last));
-          // The derivative dopri5 carries at a step boundary is the rate of its last stage, at the state reached.
-          const std::vector<double> dwdN = rate.last_rate();
-          const int accepted = j.at("accepted").get<int>();
-          stepper.restore({accepted, j.at("rejected").get<int>(), j.at("max_step").get<double>()}, w,
-                          accepted > 0 ? &dwdN : nullptr);
-        });
-    stage.steps = stepper.stats().accepted;
-    stage.rejected_steps = stepper.stats().rejected;
-    stage.explicit_max_step = stepper.stats().max_step;
-    stage.responses = int(rate.evaluations());
-  } else if (effect.stepper == "cycle_by_cycle") {
-    if (const std::string problem = cycle_by_cycle_problem(stage.stability_limit); !problem.empty())
-      throw UnsupportedError(problem);
-    wear::WearRateSystem rate(contact, stage.rate_coefficient);
-    AlwaysAccepted<wear::CycleByCycleStepper> stepper;
-    const DriveState s = drive(
-        stepper, std::ref(rate), wear::kCycle, [&] { return json{{"evaluations", rate.evaluations()}}; },
-        [&](const json& j) { rate.restore(j.at("evaluations").get<long>(), {}); });
-    stage.steps = int(s.steps);
-    stage.responses = int(rate.evaluations());
-  } else {
-    // First jump: a small share of the asymptote's depth at the initial rate, bounded by the first record.
-    const double dN = std::max(1.0, effect.tolerance * stage.asymptote.max_depth / rate_max);
-    wear::ImplicitWearStepper stepper(stage.rate_coefficient, effect.tolerance);
-    try {
-    drive(
-        stepper, wear::ResponseRef{&contact}, dN,
-        [&] {
-          const wear::ImplicitStepperState st = stepper.state();
-          return json{{"accepted", st.stats.accepted},
-                      {"rejected", st.stats.rejected},
-                      {"implicit_solves", st.stats.implicit_solves},
-                      {"responses", st.stats.responses},
-                      {"last_error", st.stats.last_error},
-                      {"unconverged", st.stats.unconverged},
-                      {"p_full", blob(st.p_full)},
-                      {"p_half", blob(st.p_half)}};
-        },
-        [&](const json& j) {
-          wear::ImplicitStepperState st;
-          st.stats.accepted = j.at("accepted").get<int>();
-          st.stats.rejected = j.at("rejected").get<int>();
-          st.stats.implicit_solves = j.at("implicit_solves").get<int>();
-          st.stats.responses = j.at("responses").get<int>();
-          st.stats.last_error = j.at("last_error").get<double>();
-          st.stats.unconverged = j.value("unconverged", 0);
-          st.p_full = unblob(j.at("p_full"));
-          st.p_half = unblob(j.at("p_half"));
-          stepper.restore(st);
-        });
-    } catch (const wear::ImplicitSolveFailure& e) {
-      const SolveSummary& last = contact.last_unconverged;
-      throw ConvergenceError(fmt::format("{} ({}, residual {:.3g})", e.what(), to_string(last.termination),
-                                         last.residual));
-    }
-    stage.steps = stepper.stats().accepted;
-    stage.unconverged_steps = stepper.stats().unconverged;
-    stage.rejected_steps = stepper.stats().rejected;
-    stage.implicit_solves = stepper.stats().implicit_solves;
-    stage.responses = stepper.stats().responses;
-  }
-  stage.mean_iterations_cycle = double(contact.cycle_iterations) / double(std::max(1L, contact.cycle_solves));
-  stage.mean_iterations_implicit = double(contact.implicit_iterations) / double(std::max(1L, contact.implicit_solves));
+  if (effect.stepper == "explicit")
+    run.drive_explicit(rate_max);
+  else if (effect.stepper == "cycle_by_cycle")
+    run.drive_cycle_by_cycle();
+  else
+    run.drive_implicit(rate_max);
+  stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
+  stage.mean_iterations_implicit =
+      double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
   return stage;
 }
 

@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "engine/simulation.hpp"
+#include "engine/wear_contacts.hpp"
 #include "engine/wear_stage.hpp"
 #include "scenes.hpp"
 #include "wear/implicit_stepper.hpp"

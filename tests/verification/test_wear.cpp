@@ -9,9 +9,11 @@
 
 #include "contact/closed_form.hpp"
 #include "engine/simulation.hpp"
+#include "engine/wear_contacts.hpp"
 #include "engine/wear_stage.hpp"
 #include "scenes.hpp"
 #include "support.hpp"
+#include "wear/implicit_stepper.hpp"
 
 using namespace fretwear;
 

@@ -1,5 +1,5 @@
 // Wear under displacement control (load.control "displacement"): the incremental route on the worn profile
-// (engine/wear_stage.hpp, IncrementalContactResponse). Below the stick limit it wears as force control at the same
+// (engine/wear_contacts.hpp, IncrementalContactResponse). Below the stick limit it wears as force control at the same
 // initial Q_max and then drifts as the worn contact's tangential compliance changes Q_max; beyond it (gross slip)
 // the whole contact wears, there is no stick zone, and the wear rate is Archard's k ∫ p s dx with s the slip
 // travelled per cycle, 4 × the sliding amplitude plus the elastic part. The wear balance holds on both, and a run
@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "common/error.hpp"
+#include "engine/checkpoint.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
 #include "scenes.hpp"
@@ -256,7 +257,7 @@ TEST_CASE("a displacement-controlled wear run resumed from a checkpoint ends as 
     stop.checkpoint_interval = 0.0;
     stop.scene_hash = scene_hash(scene);
     int boundaries = 0;
-    stop.stop_requested = [&boundaries] { return ++boundaries == 12; };
+    stop.stop_requested = [&boundaries](const WearProgress&) { return ++boundaries == 12; };
     const Run stopped = run(scene, stop);
     REQUIRE(stopped.wear.interrupted);
     REQUIRE(std::filesystem::exists(path));

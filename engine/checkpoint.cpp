@@ -1,0 +1,252 @@
+#include "engine/checkpoint.hpp"
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "common/error.hpp"
+#include "engine/deferred_signals.hpp"
+#include "engine/version.hpp"
+
+namespace fretwear {
+
+using nlohmann::json;
+
+std::filesystem::path checkpoint_path(const Scene& scene) {
+  std::filesystem::path p = scene.output_dir;
+  if (!p.has_filename()) p = p.parent_path();  // "output/x/" names the folder x
+  p += ".checkpoint";
+  return p;
+}
+
+std::uint64_t scene_hash(const Scene& scene) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const unsigned char c : scene.to_json().dump()) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+std::optional<json> read_checkpoint(const std::filesystem::path& path, const Scene& scene) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+  json j = json::from_cbor(bytes, true, false);
+  if (j.is_discarded() || !j.is_object() || j.value("format", "") != "fretwear-checkpoint")
+    throw InputError(fmt::format("{}: not a fretwear checkpoint; delete it, or run without --resume", path.string()));
+  if (j.value("format_version", 0) != kCheckpointFormat || j.value("fretwear", "") != std::string(kVersion))
+    throw InputError(fmt::format("{}: written by fretwear {} (checkpoint format {}); this is fretwear {} (format {}): "
+                                 "it cannot be resumed. Delete it, or run without --resume",
+                                 path.string(), j.value("fretwear", "?"), j.value("format_version", 0), kVersion,
+                                 kCheckpointFormat));
+  const std::string want = fmt::format("{:016x}", scene_hash(scene));
+  if (j.value("scene_hash", "") != want)
+    throw InputError(fmt::format("{}: the checkpoint belongs to another scene (\"{}\", hash {}; this scene \"{}\" "
+                                 "resolves to hash {}): refused. Delete it, or run without --resume",
+                                 path.string(), j.value("scene", "?"), j.value("scene_hash", "?"), scene.name, want));
+  return j;
+}
+
+void write_checkpoint(const std::filesystem::path& path, const json& j) {
+  const std::vector<std::uint8_t> bytes = json::to_cbor(j);
+  const DeferredStopSignals hold;  // no temporary file left by a signal
+  if (path.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);  // an error shows at open()
+  }
+  std::filesystem::path tmp = path;
+  tmp += fmt::format(".tmp-{}", ::getpid());
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t k = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) {
+      const int e = errno;
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(e)));
+    }
+    done += std::size_t(k);
+  }
+  // FRETWEAR_CHECKPOINT_PAUSE_MS (tests only): a pause with the temporary file written, so that a test's signals
+  // land while the checkpoint is being put in place.
+  if (const char* pause = std::getenv("FRETWEAR_CHECKPOINT_PAUSE_MS"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
+  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+    ::unlink(tmp.c_str());
+    throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    ::unlink(tmp.c_str());
+    throw Error(fmt::format("cannot move the checkpoint into {}: {}", path.string(), std::strerror(errno)));
+  }
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
+}
+
+json wear_checkpoint(const Scene& scene, std::uint64_t hash, const DriveState& at, double cycles_total,
+                     const std::vector<double>& w, const std::vector<WearRecord>& records, json contact,
+                     json stepper_state) {
+  json j = {{"format", "fretwear-checkpoint"},
+            {"format_version", kCheckpointFormat},
+            {"fretwear", kVersion},
+            {"scene", scene.name},
+            {"scene_hash", fmt::format("{:016x}", hash)},
+            {"stepper", scene.wear->stepper},
+            {"cells", int(w.size())},
+            {"cycles", at.N},
+            {"cycles_total", cycles_total},
+            {"dN", at.dt},
+            {"next_record", at.next},
+            {"steps", at.steps},
+            {"w", blob(w)},
+            {"records", json::array()},
+            {"contact", std::move(contact)},
+            {"stepper_state", std::move(stepper_state)}};
+  for (const WearRecord& r : records) j["records"].push_back(record_json(r));
+  return j;
+}
+
+DriveState resume_wear(const json& j, const Scene& scene, std::vector<double>& w, std::vector<WearRecord>& records) {
+  if (j.at("stepper").get<std::string>() != scene.wear->stepper || j.at("cells").get<int>() != int(w.size()))
+    throw InputError("checkpoint: written by another stepper or grid");
+  const DriveState at{j.at("cycles").get<double>(), j.at("dN").get<double>(), j.at("next_record").get<std::size_t>(),
+                      j.at("steps").get<long>()};
+  w = unblob(j.at("w"));
+  records.clear();
+  for (const json& r : j.at("records")) records.push_back(record_from(r));
+  return at;
+}
+
+json save_implicit(const wear::ImplicitWearStepper& stepper) {
+  const wear::ImplicitStepperState st = stepper.state();
+  return json{{"accepted", st.stats.accepted},
+              {"rejected", st.stats.rejected},
+              {"implicit_solves", st.stats.implicit_solves},
+              {"responses", st.stats.responses},
+              {"last_error", st.stats.last_error},
+              {"unconverged", st.stats.unconverged},
+              {"p_full", blob(st.p_full)},
+              {"p_half", blob(st.p_half)}};
+}
+
+void restore_implicit(const json& j, wear::ImplicitWearStepper& stepper) {
+  wear::ImplicitStepperState st;
+  st.stats.accepted = j.at("accepted").get<int>();
+  st.stats.rejected = j.at("rejected").get<int>();
+  st.stats.implicit_solves = j.at("implicit_solves").get<int>();
+  st.stats.responses = j.at("responses").get<int>();
+  st.stats.last_error = j.at("last_error").get<double>();
+  st.stats.unconverged = j.value("unconverged", 0);
+  st.p_full = unblob(j.at("p_full"));
+  st.p_half = unblob(j.at("p_half"));
+  stepper.restore(st);
+}
+
+json save_explicit(const wear::ExplicitWearStepper& stepper, const wear::WearRateSystem& rate) {
+  const auto& st = stepper.stats();
+  const auto& last = rate.last_response();
+  return json{{"accepted", st.accepted}, {"rejected", st.rejected}, {"max_step", st.max_step},
+              {"evaluations", rate.evaluations()}, {"p", blob(last.p)}, {"s", blob(last.s)},
+              {"stick", {last.has_stick, last.stick_left, last.stick_right}}};
+}
+
+void restore_explicit(const json& j, wear::ExplicitWearStepper& stepper, wear::WearRateSystem& rate,
+                      const std::vector<double>& w) {
+  wear::CycleResponse last;
+  last.p = unblob(j.at("p"));
+  last.s = unblob(j.at("s"));
+  last.has_stick = j.at("stick")[0].get<bool>();
+  last.stick_left = j.at("stick")[1].get<double>();
+  last.stick_right = j.at("stick")[2].get<double>();
+  rate.restore(j.at("evaluations").get<long>(), std::move(last));
+  // The derivative dopri5 carries at a step boundary is the rate of its last stage, at the state reached.
+  const std::vector<double> dwdN = rate.last_rate();
+  const int accepted = j.at("accepted").get<int>();
+  stepper.restore({accepted, j.at("rejected").get<int>(), j.at("max_step").get<double>()}, w,
+                  accepted > 0 ? &dwdN : nullptr);
+}
+
+json save_cycle_by_cycle(const wear::WearRateSystem& rate) { return json{{"evaluations", rate.evaluations()}}; }
+
+void restore_cycle_by_cycle(const json& j, wear::WearRateSystem& rate) {
+  rate.restore(j.at("evaluations").get<long>(), {});
+}
+
+// Vectors travel as raw doubles (exact, ±inf included), little-endian on every platform fretwear builds on.
+json blob(const std::vector<double>& v) {
+  std::vector<std::uint8_t> bytes(v.size() * sizeof(double));
+  if (!v.empty()) std::memcpy(bytes.data(), v.data(), bytes.size());
+  return json::binary(std::move(bytes));
+}
+
+std::vector<double> unblob(const json& j) {
+  const auto& bytes = j.get_binary();
+  if (bytes.size() % sizeof(double) != 0) throw InputError("checkpoint: a vector of the wrong size");
+  std::vector<double> v(bytes.size() / sizeof(double));
+  if (!v.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
+  return v;
+}
+
+json contact_state_json(const ContactState& s) {
+  return {{"p", blob(s.p)}, {"gap", blob(s.gap)}, {"approach", s.approach}};
+}
+
+void contact_state_from(const json& j, ContactState& s) {
+  s.p = unblob(j.at("p"));
+  s.gap = unblob(j.at("gap"));
+  s.approach = j.at("approach").get<double>();
+}
+
+json record_json(const WearRecord& r) {
+  return {{"cycles", r.cycles},
+          {"worn_area", r.worn_area},
+          {"max_depth", r.max_depth},
+          {"p_max", r.p_max},
+          {"Q_max", r.Q_max},
+          {"stick_zone", r.stick_zone ? json{r.stick_zone->first, r.stick_zone->second} : json(nullptr)},
+          {"contact", {r.contact.first, r.contact.second}},
+          {"fraction", r.fraction},
+          {"w", blob(r.w)},
+          {"p", blob(r.p)},
+          {"s", blob(r.s)},
+          {"q", blob(r.q)}};
+}
+
+WearRecord record_from(const json& j) {
+  WearRecord r;
+  r.cycles = j.at("cycles").get<double>();
+  r.worn_area = j.at("worn_area").get<double>();
+  r.max_depth = j.at("max_depth").get<double>();
+  r.p_max = j.at("p_max").get<double>();
+  r.Q_max = j.value("Q_max", 0.0);
+  if (!j.at("stick_zone").is_null()) r.stick_zone = Interval{j["stick_zone"][0], j["stick_zone"][1]};
+  r.contact = {j.at("contact")[0].get<double>(), j.at("contact")[1].get<double>()};
+  r.fraction = j.at("fraction").get<double>();
+  r.w = unblob(j.at("w"));
+  r.p = unblob(j.at("p"));
+  r.s = unblob(j.at("s"));
+  r.q = unblob(j.at("q"));
+  return r;
+}
+
+}  // namespace fretwear

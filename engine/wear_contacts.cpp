@@ -1,0 +1,219 @@
+#include "engine/wear_contacts.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "common/error.hpp"
+#include "engine/checkpoint.hpp"
+#include "engine/simulation.hpp"
+
+namespace fretwear {
+
+using nlohmann::json;
+
+bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model, double P,
+                                 std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
+  const int n = model.grid.n;
+  gap_.resize(n);
+  for (int i = 0; i < n; ++i) gap_[i] = model.g0[i] + w[i];
+  implicit_.p = p;
+  const SolveSummary s = solver.solve(gap_, P, implicit_, d);
+  ++implicit_solves;
+  implicit_iterations += s.iterations;
+  if (!s.converged()) {
+    last_unconverged = s;
+    return false;
+  }
+  p = implicit_.p;
+  return true;
+}
+
+AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model)
+    : scene_(scene),
+      model_(model),
+      solver_(*model.kernel, worn_options()),
+      implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
+  const double f = *scene.friction;
+  tilt_ = model.pair.bulk_strain(scene.bulk_stress) / f;
+  corrective_load_ = scene.P - scene.Q_max() / f;
+  if (!(corrective_load_ > 0.0))
+    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
+                                       "under force control the slip, hence the wear, is not determined; prescribe "
+                                       "the displacement instead (load.control \"displacement\" with load.delta)",
+                                       scene.Q_max(), f * scene.P));
+}
+
+int AnalogyContactResponse::cells() const { return model_.grid.n; }
+double AnalogyContactResponse::cell_width() const { return model_.grid.h(); }
+
+void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
+  const Grid& grid = model_.grid;
+  const int n = grid.n;
+  gap_.resize(n);
+  for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
+  auto check = [this](const SolveSummary& s, const char* what) {
+    ++cycle_solves;
+    cycle_iterations += s.iterations;
+    if (!s.converged())
+      throw ConvergenceError(fmt::format("wear: the {} solve on the worn profile stopped ({}) with residual {:.3g}",
+                                         what, to_string(s.termination), s.residual));
+  };
+  if (int(out.p.size()) == n) normal_.p = out.p;
+  check(solver_.solve(gap_, scene_.P, normal_), "normal");
+  for (int i = 0; i < n; ++i) gap_[i] -= tilt_ * grid.x(i);
+  check(solver_.solve(gap_, corrective_load_, corrective_), "corrective");
+  const double f = *scene_.friction;
+  out.p = normal_.p;
+  out.s.assign(n, 0.0);
+  q_top_.resize(n);  // q = f (p − p*) at the top of the cycle
+  for (int i = 0; i < n; ++i) {
+    if (corrective_.p[i] > 0.0 && !(normal_.p[i] > 0.0))
+      throw UnsupportedError(fmt::format("effects.wear: the worn contact slips backwards at its leading edge (reverse "
+                                         "slip at x = {:.6g} m), which the analogy route cannot follow; set "
+                                         "effects.tangential.route to \"incremental\"",
+                                         grid.x(i)));
+    if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
+    q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
+  }
+  stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);
+  out.has_stick = !stick_zones_.empty();
+  if (out.has_stick) out.stick_left = stick_zones_.front().left.x, out.stick_right = stick_zones_.back().right.x;
+}
+
+bool AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
+                                               std::vector<double>& p) {
+  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
+}
+
+json AnalogyContactResponse::save() const {
+  return {{"normal", contact_state_json(normal_)},
+          {"corrective", contact_state_json(corrective_)},
+          {"implicit", contact_state_json(implicit_)},
+          {"cycle_solves", cycle_solves},
+          {"cycle_iterations", cycle_iterations},
+          {"implicit_solves", implicit_solves},
+          {"implicit_iterations", implicit_iterations}};
+}
+
+void AnalogyContactResponse::restore(const json& j) {
+  contact_state_from(j.at("normal"), normal_);
+  contact_state_from(j.at("corrective"), corrective_);
+  contact_state_from(j.at("implicit"), implicit_);
+  cycle_solves = j.at("cycle_solves").get<long>();
+  cycle_iterations = j.at("cycle_iterations").get<long>();
+  implicit_solves = j.at("implicit_solves").get<long>();
+  implicit_iterations = j.at("implicit_iterations").get<long>();
+}
+
+namespace {
+
+IncrementalSlipOptions incremental_options(const Scene& scene) {
+  IncrementalSlipOptions o;
+  o.increments_per_cycle = scene.tangential->increments;
+  return o;
+}
+
+CyclicLoad incremental_load(const Scene& scene, const Model& model) {
+  const double strain = model.pair.bulk_strain(scene.bulk_stress);
+  const bool displacement = scene.control == LoadControl::displacement;
+  return {scene.P, displacement ? 0.0 : scene.Q_max(), *scene.friction, strain, displacement ? *scene.delta : 0.0};
+}
+
+}  // namespace
+
+IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x,
+                                                       double reference_depth)
+    : scene_(scene),
+      model_(model),
+      solver_(*model.kernel, worn_options()),
+      implicit_solver_(*model.kernel, implicit_options(model.grid.n)),
+      slip_(*model.kernel, incremental_options(scene)),
+      datum_(model.grid, model.pair, reference_x, reference_depth),
+      load_(incremental_load(scene, model)) {
+  if (!scene.history.empty())
+    throw UnsupportedError("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
+                           "repeated between fixed limits of Q or of the displacement");
+  if (scene.control == LoadControl::force && !(scene.Q_max() < *scene.friction * scene.P))
+    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
+                                       "under force control the slip, hence the wear, is not determined; prescribe "
+                                       "the displacement instead (load.control \"displacement\" with load.delta)",
+                                       scene.Q_max(), *scene.friction * scene.P));
+}
+
+int IncrementalContactResponse::cells() const { return model_.grid.n; }
+double IncrementalContactResponse::cell_width() const { return model_.grid.h(); }
+
+void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
+  const Grid& grid = model_.grid;
+  const int n = grid.n;
+  gap_.resize(n);
+  for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
+  if (int(out.p.size()) == n) normal_.p = out.p;
+  const SolveSummary s = solver_.solve(gap_, scene_.P, normal_);
+  ++cycle_solves;
+  cycle_iterations += s.iterations;
+  if (!s.converged())
+    throw ConvergenceError(fmt::format("wear: the normal solve on the worn profile stopped ({}) with residual {:.3g}",
+                                       to_string(s.termination), s.residual));
+  if (normal_.p.front() > 0.0 || normal_.p.back() > 0.0)
+    throw InputError(fmt::format("grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the "
+                                 "contact widens as it wears (in gross slip without limit): widen grid.window, or "
+                                 "wear fewer cycles",
+                                 normal_.p.front() > 0.0 ? "left" : "right",
+                                 normal_.p.front() > 0.0 ? grid.x_min : grid.x_max));
+  const IncrementalResult r = slip_.solve(normal_, load_, &datum_);
+  cycle_solves += r.n_increments;
+  cycle_iterations += r.n_iterations;
+  cycle_ = r.cycles.back();
+  if (cycle_.slip_travelled.empty())  // force control at Q ≥ f P: refused by the constructor
+    throw UnsupportedError("effects.wear: " + cycle_.message);
+  out.p = normal_.p;
+  out.s = cycle_.slip_travelled;
+  for (int i = 0; i < n; ++i)
+    if (!(normal_.p[i] > 0.0)) out.s[i] = 0.0;
+  out.has_stick = cycle_.stick_zone.has_value();
+  out.stick_left = out.stick_right = 0.0;
+  if (out.has_stick) out.stick_left = cycle_.stick_zone->first, out.stick_right = cycle_.stick_zone->second;
+}
+
+bool IncrementalContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
+                                                   std::vector<double>& p) {
+  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
+}
+
+json IncrementalContactResponse::save() const {
+  return {{"route", "incremental"},
+          {"normal", contact_state_json(normal_)},
+          {"implicit", contact_state_json(implicit_)},
+          {"cycle_solves", cycle_solves},
+          {"cycle_iterations", cycle_iterations},
+          {"implicit_solves", implicit_solves},
+          {"implicit_iterations", implicit_iterations}};
+}
+
+void IncrementalContactResponse::restore(const json& j) {
+  if (j.value("route", "") != "incremental") throw InputError("checkpoint: written by the analogy route's wear run");
+  contact_state_from(j.at("normal"), normal_);
+  contact_state_from(j.at("implicit"), implicit_);
+  cycle_solves = j.at("cycle_solves").get<long>();
+  cycle_iterations = j.at("cycle_iterations").get<long>();
+  implicit_solves = j.at("implicit_solves").get<long>();
+  implicit_iterations = j.at("implicit_iterations").get<long>();
+}
+
+bool wear_uses_incremental(const Scene& scene) {
+  return scene.control == LoadControl::displacement ||
+         (scene.tangential && scene.tangential->route == TangentialRoute::incremental);
+}
+
+std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const NormalResult& normal) {
+  if (!wear_uses_incremental(scene)) return std::make_unique<AnalogyContactResponse>(scene, model);
+  // The datum of the cycle stage (engine/simulation.cpp, solve_cycle): the centre of the unworn contact, 10
+  // half-widths (or grid.reference_depth) below it.
+  const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
+  const double depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
+  return std::make_unique<IncrementalContactResponse>(scene, model, 0.5 * (x_left + x_right), depth);
+}
+
+}  // namespace fretwear

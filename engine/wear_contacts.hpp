@@ -1,0 +1,142 @@
+// The contact as the wear stage sees it: wear::ContactResponse (wear/contact_response.hpp) answered on top of
+// contact/, by the analogy route on the worn profile (similar bodies, force control) or by the incremental route
+// (displacement control, or when the scene asks for it), with what the stage needs besides: the shear at the top of
+// the cycle for records, the solves' warm starts for checkpoints, and the solves' counts.
+#pragma once
+
+#include <algorithm>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "contact/contact_zones.hpp"
+#include "contact/incremental_slip.hpp"
+#include "contact/normal_solver.hpp"
+#include "contact/reference_datum.hpp"
+#include "engine/scene.hpp"
+#include "wear/contact_response.hpp"
+
+namespace fretwear {
+
+struct Model;
+struct NormalResult;
+
+// What run_wear needs of a contact besides wear::ContactResponse: the shear at the top of the last cycle solved
+// (records), the warm starts of its solves (checkpoints) and its counts.
+class WearContact : public wear::ContactResponse {
+ public:
+  // The shear traction at the top of the cycle of the last respond() per cell (Pa); the bottom is its reverse.
+  virtual const std::vector<double>& shear_top() const = 0;
+  // The tangential load at the top of the cycle of the last respond() (N/m).
+  virtual double Q_top() const = 0;
+  // The warm starts of the solves and the counts below, for checkpoints.
+  virtual nlohmann::json save() const = 0;
+  virtual void restore(const nlohmann::json& j) = 0;
+  // The last contact-implicit solve that did not converge (its termination and residual), for the error message.
+  SolveSummary last_unconverged;
+  // Solves and their CG iterations, by kind: the cycle (normal and corrective solves, or slip increments) and the
+  // contact-implicit steps.
+  long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
+
+ protected:
+  // Solves on a worn profile: its worn cells sit at zero gap and zero pressure by the hundred near the limit, and
+  // enter the contact set only through the proportioning test (contact/normal_solver.hpp).
+  static NormalSolverOptions worn_options() {
+    NormalSolverOptions o;
+    o.proportioning = kWearProportioning;
+    return o;
+  }
+  // The contact-implicit solves give up sooner than the cycle's: a step whose solve does not converge is retried
+  // with a smaller jump (wear/implicit_stepper.hpp), which is cheaper than iterating on a badly conditioned one.
+  // With proportioning they take tens of iterations, a few hundred at most (4096 cells); the limit grows with the
+  // grid.
+  static NormalSolverOptions implicit_options(int cells) {
+    NormalSolverOptions o = worn_options();
+    o.max_iterations = std::max(2000, cells);
+    return o;
+  }
+  // The end-of-step pressure of wear::ContactResponse::implicit_pressure, with `solver` (route-independent for
+  // similar bodies: the pressure does not depend on the shear).
+  bool solve_implicit(const NormalSolver& solver, const Model& model, double P, std::span<const double> w,
+                      std::span<const double> d, std::vector<double>& p);
+  ContactState implicit_;
+  std::vector<double> gap_;
+};
+
+// The steady-cycle slip and stick zone on a worn profile, by the analogy route (similar bodies, constant P).
+class AnalogyContactResponse : public WearContact {
+ public:
+  AnalogyContactResponse(const Scene& scene, const Model& model);
+  int cells() const override;
+  double cell_width() const override;
+  void respond(std::span<const double> w, wear::CycleResponse& out) override;
+  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
+  const std::vector<double>& shear_top() const override { return q_top_; }
+  double Q_top() const override { return scene_.Q_max(); }
+  // The last corrective pressure (for records).
+  const std::vector<double>& corrective_pressure() const { return corrective_.p; }
+  // The stick zones of the last cycle, one per run of the corrective contact (several where the contact has
+  // several zones); the CycleResponse carries only their span.
+  const std::vector<Zone>& stick_zones() const { return stick_zones_; }
+  nlohmann::json save() const override;
+  void restore(const nlohmann::json& j) override;
+
+ private:
+  const Scene& scene_;
+  const Model& model_;
+  NormalSolver solver_;
+  NormalSolver implicit_solver_;
+  double tilt_ = 0.0, corrective_load_ = 0.0;
+  ContactState normal_, corrective_;
+  std::vector<double> q_top_;
+  std::vector<Zone> stick_zones_;
+};
+
+// The steady cycle on a worn profile by the incremental route (contact/incremental_slip.hpp): similar bodies under
+// the scene's control, force or displacement (load.control, load.delta), through the onset of gross slip. respond(w)
+// solves the normal contact of g0 + w under P (warm-started from the last), then marches the first loading and one
+// cycle; the second of those is the steady cycle, whose slip travelled per cell is s (in gross slip, 4 times the
+// sliding amplitude plus the elastic part, over the whole contact; no stick zone). The reference points of δ are
+// those of the cycle stage (centre of the unworn contact, reference_depth below), fixed in the bodies as they wear.
+// The marching itself starts from rest each time (it is fast and has no warm start); the normal and contact-implicit
+// solves are warm-started, and save()/restore() carry those starts.
+class IncrementalContactResponse : public WearContact {
+ public:
+  // reference_x, reference_depth: the datum (m), as CycleStage has them.
+  IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x, double reference_depth);
+  int cells() const override;
+  double cell_width() const override;
+  // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
+  void respond(std::span<const double> w, wear::CycleResponse& out) override;
+  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
+  const std::vector<double>& shear_top() const override { return cycle_.q_top; }
+  double Q_top() const override { return cycle_.Q_peak; }
+  // The steady cycle of the last respond().
+  const CycleResult& last_cycle() const { return cycle_; }
+  nlohmann::json save() const override;
+  void restore(const nlohmann::json& j) override;
+
+ private:
+  const Scene& scene_;
+  const Model& model_;
+  NormalSolver solver_;
+  NormalSolver implicit_solver_;
+  IncrementalSlipSolver slip_;
+  ReferenceDatum datum_;
+  CyclicLoad load_;
+  ContactState normal_;
+  CycleResult cycle_;
+};
+
+// Whether the wear stage runs the cycle by the incremental route: under displacement control, or when the scene
+// asks for that route.
+bool wear_uses_incremental(const Scene& scene);
+
+// The contact the wear stage sees: IncrementalContactResponse when wear_uses_incremental(scene), with the datum of
+// the cycle stage (the centre of the unworn contact `normal`, 10 half-widths or grid.reference_depth below it);
+// AnalogyContactResponse otherwise. Throws what their constructors throw.
+std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const NormalResult& normal);
+
+}  // namespace fretwear

@@ -122,13 +122,234 @@ SolveSummary IncrementalSlipSolver::solve_bounded(std::span<const double> lo, st
   return second;
 }
 
+namespace {
+
+// A preconditioned run that has not halved its best residual for this many iterations has stalled.
+constexpr int kStallIterations = 200;
+
+// One run of the header's constrained CG with two-sided bounds (after Polonsky and Keer 1999) for one increment: the
+// traction q with u = K q (state, u carried from iterate to iterate), the KKT gradient g = Δs − λ and the conjugate
+// direction t on the working set.
+class BoxConstrainedCg {
+ public:
+  // Zeroes state.dw: no slip unless the increment converges.
+  BoxConstrainedCg(const HalfPlaneKernel& kernel, std::span<const double> lo, std::span<const double> hi,
+                   const SlipIncrement& inc, std::span<const double> u_prev, IncrementState& state,
+                   bool preconditioned);
+
+  bool preconditioned() const { return preconditioned_; }
+  // Some cell can carry traction, and the bounds can carry |Q|: h Σ hi ≥ |Q|.
+  bool feasible() const { return last_ >= 0 && !(std::abs(inc_.Q) > capacity_); }
+  // The slip scale d, and a feasible start: the previous traction shifted uniformly (and clamped) to the new load.
+  void start();
+  // r of the stopping criterion, on an exact u whenever r could stop the run (`last`: the iteration limit is reached).
+  double residual(double tolerance, bool last);
+  // What a converged increment leaves: the slip Δw on the cells at a bound and the rigid shift λ.
+  void record_slip();
+  // The working set: the free cells and the bound cells the residual pulls inward; g on its load-neutral subspace.
+  void select_working_set();
+  // t = z + β t on the working set, z = g or its preconditioned form; β = 0 after a restart.
+  void conjugate_direction();
+  // τ = g·t / t·K t, with v = K t; NaN unless t·K t > 0.
+  double step_length();
+  // q ← the projection of q − τ t onto the box and the load over the working set; u follows.
+  void step(double tau);
+
+ private:
+  // r = K (q − q_prev) + Δε x, λ its mean over the free cells, g = r − λ; returns the largest KKT violation over d.
+  double kkt_residual();
+
+  const HalfPlaneKernel& kernel_;
+  const Grid& grid_;
+  const std::span<const double> lo_, hi_, u_prev_;
+  const SlipIncrement& inc_;
+  IncrementState& state_;
+  std::vector<double>& q_;
+  std::vector<double>& u_;
+  const bool preconditioned_;
+  const int n_;
+  const double h_;
+  std::vector<char> contact_;     // hi > 0: the cells that can carry traction
+  int first_ = 0, last_ = -1;     // the first and the last of them
+  double capacity_ = 0.0;         // h Σ hi (N/m)
+  double d_eps_ = 0.0;            // ε − ε_prev
+  double d_ = 0.0;                // the slip scale of the stopping criterion (m)
+  double target_ = 0.0;           // Σ q = Q / h
+  std::vector<char> work_, work_old_;  // the working set, now and at the last iteration
+  std::vector<double> r_, g_, t_, v_, z_, y_;
+  bool u_exact_ = true;
+  double rz_old_ = 1.0;           // g·z of the previous direction
+  double lambda_ = 0.0;           // λ: the multiplier of the load (m)
+  bool restart_ = true;           // the next direction is a steepest-descent one
+  int n_work_ = 0;
+};
+
+BoxConstrainedCg::BoxConstrainedCg(const HalfPlaneKernel& kernel, std::span<const double> lo,
+                                   std::span<const double> hi, const SlipIncrement& inc,
+                                   std::span<const double> u_prev, IncrementState& state, bool preconditioned)
+    : kernel_(kernel),
+      grid_(kernel.grid()),
+      lo_(lo),
+      hi_(hi),
+      u_prev_(u_prev),
+      inc_(inc),
+      state_(state),
+      q_(state.q),
+      u_(state.u),
+      preconditioned_(preconditioned),
+      n_(grid_.n),
+      h_(grid_.h()),
+      contact_(n_),
+      work_(n_, 0),
+      work_old_(n_, 0),
+      r_(n_, 0.0),
+      g_(n_, 0.0),
+      t_(n_, 0.0),
+      v_(n_),
+      z_(n_),
+      y_(n_) {
+  first_ = n_;
+  for (int i = 0; i < n_; ++i) {
+    contact_[i] = hi_[i] > 0.0;
+    if (contact_[i]) first_ = std::min(first_, i), last_ = i, capacity_ += h_ * hi_[i];
+  }
+  state_.dw.assign(n_, 0.0);
+}
+
+void BoxConstrainedCg::start() {
+  d_eps_ = inc_.bulk_strain - inc_.bulk_strain_prev;
+  const double half_span = 0.5 * (grid_.x(last_) - grid_.x(first_) + h_);
+  d_ = kernel_.A() * std::abs(inc_.Q - inc_.Q_prev) + std::abs(d_eps_) * half_span;
+  if (!(d_ > 0.0)) d_ = kernel_.A() * capacity_;  // nothing changes: measure against the contact's own scale
+  target_ = inc_.Q / h_;
+  const std::vector<double> y = q_;
+  if (project(y, lo_, hi_, contact_, target_, q_)) kernel_.apply(q_, u_);
+  u_exact_ = true;
+}
+
+double BoxConstrainedCg::residual(double tolerance, bool last) {
+  double r = kkt_residual();
+  // Stop only on an exact u: recompute K q once the carried one says converged (or at the last iteration).
+  while (!u_exact_ && (r <= tolerance || last)) {
+    kernel_.apply(q_, u_);
+    u_exact_ = true;
+    r = kkt_residual();
+  }
+  return r;
+}
+
+double BoxConstrainedCg::kkt_residual() {
+  double r_free = 0.0, r_upper = -std::numeric_limits<double>::infinity(), r_lower = -r_upper;
+  int n_free = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (!contact_[i]) continue;
+    r_[i] = u_[i] - u_prev_[i] + d_eps_ * grid_.x(i);
+    if (q_[i] >= hi_[i]) {
+      r_upper = std::max(r_upper, r_[i]);
+    } else if (q_[i] <= lo_[i]) {
+      r_lower = std::min(r_lower, r_[i]);
+    } else {
+      r_free += r_[i];
+      ++n_free;
+    }
+  }
+  if (n_free > 0) {
+    lambda_ = r_free / n_free;
+  } else {  // every cell at a bound: any λ in [max over q = +fp, min over q = −fp] satisfies the KKT conditions
+    lambda_ = std::isfinite(r_upper) && std::isfinite(r_lower) ? 0.5 * (r_upper + r_lower)
+              : std::isfinite(r_upper)                         ? r_upper
+                                                               : r_lower;
+  }
+  double violation = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (!contact_[i]) continue;
+    g_[i] = r_[i] - lambda_;
+    const double vi = q_[i] >= hi_[i]   ? std::max(g_[i], 0.0)
+                      : q_[i] <= lo_[i] ? std::max(-g_[i], 0.0)
+                                        : std::abs(g_[i]);
+    violation = std::max(violation, vi);
+  }
+  return violation / d_;
+}
+
+// Δw = −Δs on the cells at a bound; the cells that stick do not slip, nor does a bound cell whose residual points
+// inward by less than the tolerance (it is taken as sticking, so that q Δw ≥ 0 holds exactly).
+void BoxConstrainedCg::record_slip() {
+  for (int i = 0; i < n_; ++i) {
+    if (!contact_[i]) continue;
+    if (q_[i] >= hi_[i]) state_.dw[i] = std::max(-g_[i], 0.0);
+    else if (q_[i] <= lo_[i]) state_.dw[i] = std::min(-g_[i], 0.0);
+  }
+  state_.shift = lambda_;
+}
+
+void BoxConstrainedCg::select_working_set() {
+  n_work_ = 0;
+  double g_sum = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    work_[i] = contact_[i] && ((q_[i] < hi_[i] && q_[i] > lo_[i]) || (q_[i] >= hi_[i] && g_[i] > 0.0) ||
+                               (q_[i] <= lo_[i] && g_[i] < 0.0));
+    if (work_[i]) g_sum += g_[i], ++n_work_;
+    restart_ = restart_ || work_[i] != work_old_[i];  // a new set restarts CG
+  }
+  work_old_ = work_;
+  const double g_mean = g_sum / n_work_;
+  for (int i = 0; i < n_; ++i) g_[i] = work_[i] ? g_[i] - g_mean : 0.0;
+}
+
+void BoxConstrainedCg::conjugate_direction() {
+  if (preconditioned_) {
+    kernel_.fft().apply_spectrum(kernel_.inverse_spectrum(), g_, z_);
+    double z_sum = 0.0;
+    for (int i = 0; i < n_; ++i)
+      if (work_[i]) z_sum += z_[i];
+    for (int i = 0; i < n_; ++i) z_[i] = work_[i] ? z_[i] - z_sum / n_work_ : 0.0;
+  } else {
+    z_ = g_;
+  }
+  double rz = 0.0;
+  for (int i = 0; i < n_; ++i)
+    if (work_[i]) rz += g_[i] * z_[i];
+  const double beta = restart_ ? 0.0 : rz / rz_old_;
+  for (int i = 0; i < n_; ++i) t_[i] = work_[i] ? z_[i] + beta * t_[i] : 0.0;
+  rz_old_ = rz;
+}
+
+double BoxConstrainedCg::step_length() {
+  kernel_.apply(t_, v_);
+  double num = 0.0, den = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (work_[i]) {
+      num += g_[i] * t_[i];
+      den += v_[i] * t_[i];  // Σ t = 0 on the working set: no mean of v to remove
+    }
+  }
+  return den > 0.0 ? num / den : std::numeric_limits<double>::quiet_NaN();
+}
+
+void BoxConstrainedCg::step(double tau) {
+  double fixed = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    y_[i] = work_[i] ? q_[i] - tau * t_[i] : q_[i];
+    if (contact_[i] && !work_[i]) fixed += q_[i];
+  }
+  const bool clamped = project(y_, lo_, hi_, work_, target_ - fixed, q_);
+  if (clamped) {
+    kernel_.apply(q_, u_);
+    u_exact_ = true;
+  } else {
+    for (int i = 0; i < n_; ++i) u_[i] -= tau * v_[i];
+    u_exact_ = false;
+  }
+  restart_ = clamped;  // a cell that hit a bound restarts CG
+}
+
+}  // namespace
+
 SolveSummary IncrementalSlipSolver::iterate(std::span<const double> lo, std::span<const double> hi,
                                             const SlipIncrement& inc, std::span<const double> u_prev,
                                             IncrementState& state, bool use_preconditioner) const {
   const auto t_start = std::chrono::steady_clock::now();
-  const Grid& grid = kernel_.grid();
-  const int n = grid.n;
-  const double h = grid.h();
   SolveSummary summary;
   auto finish = [&](Termination t) {
     summary.termination = t;
@@ -136,149 +357,30 @@ SolveSummary IncrementalSlipSolver::iterate(std::span<const double> lo, std::spa
     return summary;
   };
 
-  std::vector<char> contact(n), work(n, 0), work_old(n, 0);
-  int first = n, last = -1;
-  double capacity = 0.0;
-  for (int i = 0; i < n; ++i) {
-    contact[i] = hi[i] > 0.0;
-    if (contact[i]) first = std::min(first, i), last = i, capacity += h * hi[i];
-  }
-  state.dw.assign(n, 0.0);
-  if (last < 0) return finish(Termination::no_admissible_cell);
-  if (std::abs(inc.Q) > capacity) return finish(Termination::no_admissible_cell);  // beyond f P: no feasible q
-
-  const double d_eps = inc.bulk_strain - inc.bulk_strain_prev;
-  const double half_span = 0.5 * (grid.x(last) - grid.x(first) + h);
-  double d = kernel_.A() * std::abs(inc.Q - inc.Q_prev) + std::abs(d_eps) * half_span;
-  if (!(d > 0.0)) d = kernel_.A() * capacity;  // nothing changes: measure against the contact's own scale
-  const double target = inc.Q / h;
-
-  auto& q = state.q;
-  auto& u = state.u;
-  // A feasible start: the previous traction shifted uniformly (and clamped) to the new load.
-  {
-    const std::vector<double> y = q;
-    if (project(y, lo, hi, contact, target, q)) kernel_.apply(q, u);
-  }
-  bool u_exact = true;
-
-  const bool preconditioned = use_preconditioner && preconditioned_;
-  constexpr int kStallIterations = 200;  // a preconditioned run that has not halved its residual for this long
+  BoxConstrainedCg cg(kernel_, lo, hi, inc, u_prev, state, use_preconditioner && preconditioned_);
+  if (!cg.feasible()) return finish(Termination::no_admissible_cell);  // no cell, or beyond f P: no feasible q
+  cg.start();
   double best_residual = std::numeric_limits<double>::infinity();
   int best_iteration = 0;
-  std::vector<double> r(n, 0.0), g(n, 0.0), t(n, 0.0), v(n), z(n), y(n);
-  double rz_old = 1.0, lambda = 0.0;
-  bool restart = true;
-
   for (int it = 0;; ++it) {
+    // The stopping test; a preconditioned run that stalls stops too, and solve_bounded() goes on without it.
     summary.iterations = it;
-    for (bool evaluated = false; !evaluated;) {
-      // r = K (q − q_prev) + Δε x; λ its mean over the free cells (the multiplier of the load).
-      double r_free = 0.0, r_upper = -std::numeric_limits<double>::infinity(), r_lower = -r_upper;
-      int n_free = 0;
-      for (int i = 0; i < n; ++i) {
-        if (!contact[i]) continue;
-        r[i] = u[i] - u_prev[i] + d_eps * grid.x(i);
-        if (q[i] >= hi[i]) {
-          r_upper = std::max(r_upper, r[i]);
-        } else if (q[i] <= lo[i]) {
-          r_lower = std::min(r_lower, r[i]);
-        } else {
-          r_free += r[i];
-          ++n_free;
-        }
-      }
-      if (n_free > 0) {
-        lambda = r_free / n_free;
-      } else {  // every cell at a bound: any λ in [max over q = +fp, min over q = −fp] satisfies the KKT conditions
-        lambda = std::isfinite(r_upper) && std::isfinite(r_lower) ? 0.5 * (r_upper + r_lower)
-                 : std::isfinite(r_upper)                         ? r_upper
-                                                                  : r_lower;
-      }
-      double violation = 0.0;
-      for (int i = 0; i < n; ++i) {
-        if (!contact[i]) continue;
-        g[i] = r[i] - lambda;
-        const double vi = q[i] >= hi[i] ? std::max(g[i], 0.0) : q[i] <= lo[i] ? std::max(-g[i], 0.0) : std::abs(g[i]);
-        violation = std::max(violation, vi);
-      }
-      summary.residual = violation / d;
-      evaluated = u_exact || !(summary.residual <= options_.tolerance || it >= options_.max_iterations);
-      if (!evaluated) {
-        kernel_.apply(q, u);
-        u_exact = true;
-      }
-    }
+    summary.residual = cg.residual(options_.tolerance, it >= options_.max_iterations);
     if (!std::isfinite(summary.residual)) return finish(Termination::non_finite);
     if (summary.residual <= options_.tolerance) {
-      // Δw = −Δs on the cells at a bound; the cells that stick do not slip, nor does a bound cell whose residual
-      // points inward by less than the tolerance (it is taken as sticking, so that q Δw ≥ 0 holds exactly).
-      for (int i = 0; i < n; ++i) {
-        if (!contact[i]) continue;
-        if (q[i] >= hi[i]) state.dw[i] = std::max(-g[i], 0.0);
-        else if (q[i] <= lo[i]) state.dw[i] = std::min(-g[i], 0.0);
-      }
-      state.shift = lambda;
+      cg.record_slip();
       return finish(Termination::converged);
     }
     if (it >= options_.max_iterations) return finish(Termination::max_iterations);
     if (summary.residual < 0.5 * best_residual) best_residual = summary.residual, best_iteration = it;
-    if (preconditioned && it - best_iteration > kStallIterations) return finish(Termination::max_iterations);
+    if (cg.preconditioned() && it - best_iteration > kStallIterations) return finish(Termination::max_iterations);
 
-    // The working set: the free cells and the bound cells the residual pulls inward; a new set restarts CG.
-    int n_work = 0;
-    double g_sum = 0.0;
-    for (int i = 0; i < n; ++i) {
-      work[i] = contact[i] && ((q[i] < hi[i] && q[i] > lo[i]) || (q[i] >= hi[i] && g[i] > 0.0) ||
-                               (q[i] <= lo[i] && g[i] < 0.0));
-      if (work[i]) g_sum += g[i], ++n_work;
-      restart = restart || work[i] != work_old[i];
-    }
-    work_old = work;
-    // The gradient on the load-neutral subspace of the working set, and its preconditioned form.
-    const double g_mean = g_sum / n_work;
-    for (int i = 0; i < n; ++i) g[i] = work[i] ? g[i] - g_mean : 0.0;
-    if (preconditioned) {
-      kernel_.fft().apply_spectrum(kernel_.inverse_spectrum(), g, z);
-      double z_sum = 0.0;
-      for (int i = 0; i < n; ++i)
-        if (work[i]) z_sum += z[i];
-      for (int i = 0; i < n; ++i) z[i] = work[i] ? z[i] - z_sum / n_work : 0.0;
-    } else {
-      z = g;
-    }
-    double rz = 0.0;
-    for (int i = 0; i < n; ++i)
-      if (work[i]) rz += g[i] * z[i];
-    const double beta = restart ? 0.0 : rz / rz_old;
-    for (int i = 0; i < n; ++i) t[i] = work[i] ? z[i] + beta * t[i] : 0.0;
-    rz_old = rz;
-    kernel_.apply(t, v);
-    double num = 0.0, den = 0.0;
-    for (int i = 0; i < n; ++i) {
-      if (work[i]) {
-        num += g[i] * t[i];
-        den += v[i] * t[i];  // Σ t = 0 on the working set: no mean of v to remove
-      }
-    }
-    const double tau = num / den;
-    if (!std::isfinite(tau) || !(den > 0.0)) return finish(Termination::non_finite);
-
-    // Step on the working set, then project back onto the box and the load over it.
-    double fixed = 0.0;
-    for (int i = 0; i < n; ++i) {
-      y[i] = work[i] ? q[i] - tau * t[i] : q[i];
-      if (contact[i] && !work[i]) fixed += q[i];
-    }
-    const bool clamped = project(y, lo, hi, work, target - fixed, q);
-    if (clamped) {
-      kernel_.apply(q, u);
-      u_exact = true;
-    } else {
-      for (int i = 0; i < n; ++i) u[i] -= tau * v[i];
-      u_exact = false;
-    }
-    restart = clamped;
+    // One iteration: a CG step on the working set, then the projection onto the box and the load over it.
+    cg.select_working_set();
+    cg.conjugate_direction();
+    const double tau = cg.step_length();
+    if (!std::isfinite(tau)) return finish(Termination::non_finite);
+    cg.step(tau);
   }
 }
 

@@ -91,16 +91,29 @@ bool project(std::span<const double> y, std::span<const double> lo, std::span<co
   return changed;
 }
 
+// The traction bounds ±f p of the pressure p: zero off the contact.
+void traction_bounds(std::span<const double> p, double f, std::span<double> lo, std::span<double> hi) {
+  for (std::size_t i = 0; i < hi.size(); ++i) {
+    hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
+    lo[i] = -hi[i];
+  }
+}
+
+// The cells whose bound has closed (they left the contact) drop their traction, and u = K q follows.
+void drop_separated(const HalfPlaneKernel& kernel, std::span<const double> hi, IncrementState& state) {
+  bool dropped = false;
+  for (std::size_t i = 0; i < hi.size(); ++i)
+    if (hi[i] == 0.0 && state.q[i] != 0.0) state.q[i] = 0.0, dropped = true;
+  if (dropped) kernel.apply(state.q, state.u);
+}
+
 }  // namespace
 
 SolveSummary IncrementalSlipSolver::solve_increment(std::span<const double> p, double f, const SlipIncrement& inc,
                                                     IncrementState& state) const {
   const int n = kernel_.grid().n;
   std::vector<double> lo(n), hi(n);
-  for (int i = 0; i < n; ++i) {
-    hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-    lo[i] = -hi[i];
-  }
+  traction_bounds(p, f, lo, hi);
   if (int(state.q.size()) != n || int(state.u.size()) != n) {
     state.q.assign(n, 0.0);
     state.u.assign(n, 0.0);
@@ -431,13 +444,136 @@ void close_cycle(const Grid& grid, std::span<const double> w_max, std::span<cons
     r.stick_zone_unloaded = Interval{stick_unloaded.front().left.x, stick_unloaded.back().right.x};
 }
 
+// The run's one cycle when the load reaches |Q| ≥ f P under force control: gross slip, without fields.
+IncrementalResult gross_slip(std::string message) {
+  IncrementalResult result;
+  CycleResult r;
+  r.regime = Regime::gross_slip;
+  r.message = std::move(message);
+  result.cycles.push_back(std::move(r));
+  return result;
+}
+
+// Where an increment sits in the run, for messages: "the first loading, increment k" or "cycle c, increment k".
+std::string where(int cycle, int k) {
+  const std::string when = cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle);
+  return fmt::format("{} increment {}", when, k);
+}
+
 }  // namespace
+
+// What solve() and solve_history() share: the traction carried from increment to increment, the rigid shift λ summed
+// over the increments with the fretting loop δ = λ + D(q, p) − D(0, p) − ε x_c it gives (with a datum), the slip of
+// the cycle being marched, and the result's counts.
+class IncrementalSlipSolver::Run {
+ public:
+  IncrementalResult result() { return std::move(result_); }
+
+ protected:
+  Run(const IncrementalSlipSolver& solver, const ContactState& contact, const ReferenceDatum* datum);
+  virtual ~Run() = default;
+
+  // The loads at the end of the last increment, and δ there (needs the datum).
+  virtual LoopPoint loop_point() const = 0;
+  // δ at the end of the last increment under the pressure p and the bulk strain eps.
+  double delta(std::span<const double> p, double eps) const;
+  // An increment's solve counted into the result: increments, CG iterations and the worst residual.
+  void count(const SolveSummary& s);
+  // A cycle before its first increment: no slip yet; with a datum the first loading and the loop's first point.
+  CycleResult begin_cycle();
+  // The end of an increment within the cycle: the largest |Q|, the loop point and the slip.
+  void end_increment(CycleResult& r, double Q);
+
+  const IncrementalSlipSolver& solver_;
+  const HalfPlaneKernel& kernel_;
+  const IncrementalSlipOptions& options_;
+  const Grid& grid_;
+  const int n_;
+  const double h_;
+  const ReferenceDatum* datum_;
+  const double D0_;             // D(0, p) under the contact's pressure (m)
+  IncrementState state_;        // q and u = K q at the end of the last increment, zero before the first
+  double shift_ = 0.0;          // λ summed over the increments (m)
+  std::vector<LoopPoint> first_loading_;
+  std::vector<double> w_, w_min_, w_max_;  // the slip per cell over the cycle being marched, and its extremes (m)
+  IncrementalResult result_;
+};
+
+// solve(): under constant P the controlled quantity x (Q, or δ under displacement control) cycles 0 → +X → −X → +X
+// and the bulk strain follows it; with β ≠ 0 the pressure moves with the shear.
+class IncrementalSlipSolver::AmplitudeRun : public Run {
+ public:
+  AmplitudeRun(const IncrementalSlipSolver& solver, const ContactState& contact, const CyclicLoad& load,
+               const ReferenceDatum* datum, const NormalCoupling* coupling);
+  // The first loading, 0 → X, in a quarter of a cycle's increments.
+  void first_loading();
+  // One steady cycle, top to top, into the result.
+  void cycle(int c);
+
+ private:
+  // The search for the Q of one displacement-controlled increment.
+  struct DeltaSearch {
+    DeltaSearch(double target, double strain, double strain_prev, int in_cycle, int increment,
+                const IncrementState& from)
+        : x_t(target), eps_t(strain), eps_0(strain_prev), cycle(in_cycle), k(increment), start(from), trial(from) {}
+    double x_t, eps_t, eps_0;     // the target δ (m); the bulk strain at the increment's end and at its start
+    int cycle, k;
+    IncrementState start, trial;  // the increment's start; the solve of the last evaluation
+    SolveSummary total;           // the solves so far, summed
+    int evaluations = 0;
+    double last = 0.0;            // Q of the last evaluation (N/m)
+  };
+
+  LoopPoint loop_point() const override { return {P_, Q_prev_, delta_now()}; }
+  double strain_at(double x) const { return X_ > 0.0 ? bulk_strain_ * x / X_ : 0.0; }
+  double delta_now() const { return delta(p_, strain_at(x_prev_)); }
+  // The increment to x_t, solved and recorded.
+  SolveSummary step(double x_t, int cycle, int k);
+  // Throws ConvergenceError naming the increment if s did not converge.
+  void check(const SolveSummary& s, int cycle, int k, double Qt) const;
+  // Displacement control: the Q whose force-controlled increment gives δ(Q) = x_t, and its solves.
+  std::pair<double, SolveSummary> displacement_increment(double x_t, int cycle, int k);
+  // δ(Q) − x_t: the force-controlled increment to Q from the increment's start, warm-started from the last evaluation.
+  double delta_miss(DeltaSearch& search, double Q);
+  // Q accepted: the state holds its solve (an end of the bracket is solved again if another was evaluated since).
+  std::pair<double, SolveSummary> accept(DeltaSearch& search, double Q);
+  // Q = ±f P with δ still short of the target by −miss: the bodies slide rigidly by the rest (extra_).
+  double slide(double Q_bound, double miss);
+  // The Illinois false position on the bracket [a, b] of δ(Q) − x_t, to |δ(Q) − x_t| ≤ tol.
+  std::pair<double, SolveSummary> false_position(DeltaSearch& search, double a, double fa, double b, double fb,
+                                                 double tol);
+  // β ≠ 0: the increment by block Gauss–Seidel sweeps between the normal and the tangential problems.
+  SolveSummary coupled_increment(const SlipIncrement& inc, int cycle, int k);
+  // A sweep's normal half: p for the gap g0 − A β S q under the load P, warm-started from the last p.
+  void coupled_pressure(std::span<const double> q, const SlipIncrement& inc, int cycle, int k);
+  // A sweep's tangential half: q with the bounds ±f p and the coupling slip A β S (p − p_prev) of the pressure.
+  SolveSummary coupled_traction(const SlipIncrement& inc, std::span<const double> p_prev,
+                                std::span<const double> u_prev, IncrementState& trial);
+  // Gross slip where the bodies slid rigidly beyond the stick limit, reverse slip where some cell is held at −f p at
+  // the top of the cycle.
+  void classify(CycleResult& r, double sliding) const;
+
+  const double f_, P_, bulk_strain_;
+  const bool displacement_;
+  const double X_;              // the amplitude of x: Q (N/m) or δ (m)
+  const NormalCoupling* coupling_;
+  const bool coupled_;          // β ≠ 0
+  const int m_;
+  std::vector<double> p_;       // the pressure (Pa); it moves over the cycle only when β ≠ 0
+  std::vector<double> lo_, hi_;
+  double capacity_ = 0.0;       // f P on the grid, summed as iterate() sums it (N/m)
+  double Q_prev_ = 0.0, x_prev_ = 0.0;  // at the end of the last increment
+  double extra_ = 0.0;          // the rigid sliding of the last increment beyond the stick limit (m)
+  double compliance_;           // dδ/dQ of the last increment (m²/N): the first guess of the next one's Q
+  const CouplingKernel S_;
+  const NormalSolver normal_;
+  const double A_beta_;
+  ContactState normal_state_;
+};
 
 IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, const CyclicLoad& load,
                                                const ReferenceDatum* datum, const NormalCoupling* coupling) const {
-  const Grid& grid = kernel_.grid();
-  const int n = grid.n;
-  const double h = grid.h();
+  const int n = kernel_.grid().n;
   const double f = load.f, P = load.P, Q = load.Q_max;
   const bool displacement = load.delta > 0.0;
   if (!load.history.empty()) throw InputError("incremental slip: a load history is solved by solve_history()");
@@ -449,289 +585,327 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
                            fmt::format("{:.4g}", coupling->beta) + ") is not supported yet; use force control");
   if (coupled && int(coupling->g0.size()) != n)
     throw InputError("incremental slip: the coupled solve needs the initial gap on the grid");
-  IncrementalResult result;
-  if (!displacement && Q >= f * P) {
-    CycleResult r;
-    r.regime = Regime::gross_slip;
-    r.message = fmt::format("Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and under force control the "
-                            "slip is not determined",
-                            Q, f * P);
-    result.cycles.push_back(std::move(r));
-    return result;
+  if (!displacement && Q >= f * P)
+    return gross_slip(fmt::format("Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and under force "
+                                  "control the slip is not determined",
+                                  Q, f * P));
+
+  AmplitudeRun run(*this, contact, load, datum, coupling);
+  run.first_loading();
+  for (int cycle = 1; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
+  return run.result();
+}
+
+IncrementalSlipSolver::Run::Run(const IncrementalSlipSolver& solver, const ContactState& contact,
+                                const ReferenceDatum* datum)
+    : solver_(solver),
+      kernel_(solver.kernel_),
+      options_(solver.options_),
+      grid_(kernel_.grid()),
+      n_(grid_.n),
+      h_(grid_.h()),
+      datum_(datum),
+      D0_(datum ? datum->relative_displacement(std::vector<double>(n_, 0.0), contact.p) : 0.0) {
+  state_.q.assign(n_, 0.0);
+  state_.u.assign(n_, 0.0);
+}
+
+double IncrementalSlipSolver::Run::delta(std::span<const double> p, double eps) const {
+  return shift_ + datum_->relative_displacement(state_.q, p) - D0_ - eps * datum_->x_c();
+}
+
+void IncrementalSlipSolver::Run::count(const SolveSummary& s) {
+  ++result_.n_increments;
+  result_.n_iterations += s.iterations;
+  if (!(s.residual <= result_.worst.residual) || result_.n_increments == 1) result_.worst = s;
+}
+
+CycleResult IncrementalSlipSolver::Run::begin_cycle() {
+  CycleResult r;
+  w_.assign(n_, 0.0);
+  w_min_.assign(n_, 0.0);
+  w_max_.assign(n_, 0.0);
+  r.slip_travelled.assign(n_, 0.0);
+  r.energy_density.assign(n_, 0.0);
+  if (datum_) {
+    r.first_loading = first_loading_;
+    r.loop.push_back(loop_point());
   }
+  return r;
+}
 
-  std::vector<double> p = contact.p;  // moves over the cycle only when β ≠ 0
-  std::vector<double> lo(n), hi(n);
-  double capacity = 0.0;  // f P on the grid, summed as iterate() sums it
-  for (int i = 0; i < n; ++i) {
-    hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-    lo[i] = -hi[i];
-    if (hi[i] > 0.0) capacity += h * hi[i];
+void IncrementalSlipSolver::Run::end_increment(CycleResult& r, double Q) {
+  r.Q_peak = std::max(r.Q_peak, std::abs(Q));
+  if (datum_) {
+    r.loop.push_back(loop_point());
+    r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
   }
-  const int m = options_.increments_per_cycle;
-  // The controlled quantity x (Q, or δ under displacement control) cycles 0 → +X → −X → +X; the bulk strain follows it.
-  const double X = displacement ? load.delta : Q;
-  auto strain_at = [&](double x) { return X > 0.0 ? load.bulk_strain * x / X : 0.0; };
+  accumulate_slip(state_, w_, w_min_, w_max_, r);
+}
 
-  IncrementState state;
-  state.q.assign(n, 0.0);
-  state.u.assign(n, 0.0);
-  double Q_prev = 0.0, x_prev = 0.0, extra = 0.0;
-  // The fretting loop: λ summed over the increments, and δ = λ + D(q, p) − D(0, p) − ε x_c at each increment's end.
-  double shift = 0.0;
-  const double D0 = datum ? datum->relative_displacement(std::vector<double>(n, 0.0), p) : 0.0;
-  auto delta_now = [&](double x) {
-    return shift + datum->relative_displacement(state.q, p) - D0 - strain_at(x) * datum->x_c();
-  };
-  std::vector<LoopPoint> first_loading;
-  if (datum) first_loading.push_back({P, 0.0, 0.0});
-  auto where = [&](int cycle, int k) {
-    const std::string when = cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle);
-    return fmt::format("{} increment {}", when, k);
-  };
-  auto check = [&](const SolveSummary& s, int cycle, int k, double Qt) {
-    if (!s.converged())
-      throw ConvergenceError(fmt::format(
-          "incremental slip: {} (Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} iterations with residual {:.3g} "
-          "above the tolerance {:.3g}",
-          where(cycle, k), Q_prev, Qt, to_string(s.termination), s.iterations, s.residual, options_.tolerance));
-  };
-  double compliance = kernel_.A();  // dδ/dQ of the last increment (m²/N): the first guess of the next one's Q
+IncrementalSlipSolver::AmplitudeRun::AmplitudeRun(const IncrementalSlipSolver& solver, const ContactState& contact,
+                                                  const CyclicLoad& load, const ReferenceDatum* datum,
+                                                  const NormalCoupling* coupling)
+    : Run(solver, contact, datum),
+      f_(load.f),
+      P_(load.P),
+      bulk_strain_(load.bulk_strain),
+      displacement_(load.delta > 0.0),
+      X_(displacement_ ? load.delta : load.Q_max),
+      coupling_(coupling),
+      coupled_(coupling && coupling->beta != 0.0),
+      m_(options_.increments_per_cycle),
+      p_(contact.p),
+      lo_(n_),
+      hi_(n_),
+      compliance_(kernel_.A()),
+      S_(grid_),
+      normal_(kernel_, options_.normal),
+      A_beta_(coupled_ ? kernel_.A() * coupling->beta : 0.0) {
+  traction_bounds(p_, f_, lo_, hi_);
+  for (int i = 0; i < n_; ++i)
+    if (hi_[i] > 0.0) capacity_ += h_ * hi_[i];
+  normal_state_.p = p_;
+}
 
-  // Displacement control: the increment of force control whose Q gives δ(Q) = x_t. δ(Q) is continuous and
-  // increasing (the tangential compliance is positive), so a bracket and the Illinois false position find it; past
-  // ±f P (every cell at ±f p) the bodies slide rigidly by the rest (`extra`).
-  auto displacement_increment = [&](double x_t, int cycle, int k) {
-    const IncrementState start = state;
-    IncrementState trial = state;
-    const double eps_t = strain_at(x_t), eps_0 = strain_at(x_prev);
-    const double tol = 10.0 * options_.tolerance * std::abs(x_t - x_prev);
-    SolveSummary total;
-    int evaluations = 0;
-    double last = 0.0;
-    auto evaluate = [&](double Qe) {
-      last = Qe;
-      trial.q = state.q;  // warm start: the last evaluation (q and u = K q agree)
-      trial.u = state.u;
-      const SolveSummary s = solve_bounded(lo, hi, {Qe, Q_prev, eps_t, eps_0}, start.u, trial);
-      total.iterations += s.iterations;
-      total.seconds += s.seconds;
-      total.residual = std::max(total.residual, s.residual);
-      total.termination = s.termination;
-      check(s, cycle, k, Qe);
-      if (++evaluations > kMaxEvaluations)
-        throw ConvergenceError(fmt::format("incremental slip: {} (δ from {:.6g} to {:.6g} m): no Q found in {} "
-                                           "solves",
-                                           where(cycle, k), x_prev, x_t, kMaxEvaluations));
-      state = trial;
-      return shift + trial.shift + datum->relative_displacement(trial.q, p) - D0 - eps_t * datum->x_c() - x_t;
-    };
-    auto at_bound = [&](double Qb, double fb) {  // Q = ±f P and δ still short of x_t: rigid sliding
-      extra = -fb;
-      for (int i = 0; i < n; ++i)
-        if (hi[i] > 0.0) state.dw[i] += extra;
-      return Qb;
-    };
-    double Qt = std::clamp(Q_prev + (x_t - x_prev) / compliance, -capacity, capacity);
-    double ft = evaluate(Qt);
-    if (std::abs(ft) <= tol) return std::pair(Qt, total);
-    // Bracket: a with f < 0, b with f > 0.
-    double a = Qt, fa = ft, b = Qt, fb = ft;
-    double step = std::max(std::abs(ft) / compliance, 1e-6 * capacity);
-    while (fa > 0.0) {
-      if (a == -capacity) return std::pair(at_bound(a, fa), total);
-      b = a, fb = fa;
-      a = std::max(a - step, -capacity);
-      fa = evaluate(a);
-      step *= 2.0;
-    }
-    while (fb < 0.0) {
-      if (b == capacity) return std::pair(at_bound(b, fb), total);
-      a = b, fa = fb;
-      b = std::min(b + step, capacity);
-      fb = evaluate(b);
-      step *= 2.0;
-    }
-    auto accept = [&](double Qa) {  // state holds the last evaluation; an end accepted otherwise is solved again
-      if (Qa != last) evaluate(Qa);
-      return std::pair(Qa, total);
-    };
-    if (std::abs(fa) <= tol) return accept(a);
-    if (std::abs(fb) <= tol) return accept(b);
-    int side = 0;  // Illinois: halve the retained end's value when the same end is kept twice
-    for (;;) {
-      Qt = (a * fb - b * fa) / (fb - fa);
-      if (!(Qt > a && Qt < b)) Qt = 0.5 * (a + b);
-      ft = evaluate(Qt);
-      if (std::abs(ft) <= tol || b - a <= 1e-14 * capacity) return std::pair(Qt, total);
-      if (ft < 0.0) {
-        a = Qt, fa = ft;
-        if (side == -1) fb *= 0.5;
-        side = -1;
-      } else {
-        b = Qt, fb = ft;
-        if (side == 1) fa *= 0.5;
-        side = 1;
-      }
-    }
-  };
+void IncrementalSlipSolver::AmplitudeRun::first_loading() {
+  if (datum_) first_loading_.push_back({P_, 0.0, 0.0});
+  for (int k = 1; k <= m_ / 4; ++k) {
+    step(X_ * (4.0 * k / m_), 0, k);
+    if (datum_) first_loading_.push_back(loop_point());
+  }
+}
 
-  // β ≠ 0: one increment by block Gauss–Seidel between the normal and the tangential problems (see the header).
-  const CouplingKernel S(grid);
-  const NormalSolver normal(kernel_, options_.normal);
-  const double A_beta = coupled ? kernel_.A() * coupling->beta : 0.0;
-  ContactState normal_state;
-  normal_state.p = p;
-  auto coupled_increment = [&](const SlipIncrement& inc, int cycle, int k) {
-    const std::vector<double> p_prev = p, u_prev = state.u;
-    std::vector<double> shifted(n), coupling_u(n), u_eff(n), p_last = p, q_last = state.q;
-    IncrementState trial = state;
-    SolveSummary total;
-    double change = std::numeric_limits<double>::infinity();
-    int sweeps = 0;
-    while (change > options_.coupling_tolerance * *std::max_element(p.begin(), p.end())) {
-      if (++sweeps > options_.max_coupling_sweeps)
-        throw ConvergenceError(fmt::format(
-            "incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal and tangential solves of "
-            "dissimilar bodies (beta = {:.4g}) still change the traction by {:.3g} of the peak pressure after {} "
-            "sweeps (coupling tolerance {:.3g})",
-            where(cycle, k), inc.Q_prev, inc.Q, coupling->beta,
-            change / *std::max_element(p.begin(), p.end()), options_.max_coupling_sweeps,
-            options_.coupling_tolerance));
-      // The pressure under the current shear: gap g0 − A β S q.
-      S.apply(trial.q, coupling_u, A_beta);
-      for (int i = 0; i < n; ++i) shifted[i] = coupling->g0[i] - coupling_u[i];
-      const SolveSummary ns = normal.solve(shifted, P, normal_state);
-      if (!ns.converged())
-        throw ConvergenceError(fmt::format("incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal "
-                                           "solve stopped ({}) with residual {:.3g}",
-                                           where(cycle, k), inc.Q_prev, inc.Q, to_string(ns.termination),
-                                           ns.residual));
-      p = normal_state.p;
-      // The shear under that pressure: bounds ±f p, cells that separated drop their traction, and the pressure's
-      // coupling slip A β S (p − p_prev) enters through the previous displacement.
-      bool dropped = false;
-      for (int i = 0; i < n; ++i) {
-        hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-        lo[i] = -hi[i];
-        if (hi[i] == 0.0 && trial.q[i] != 0.0) trial.q[i] = 0.0, dropped = true;
-      }
-      if (dropped) kernel_.apply(trial.q, trial.u);
-      for (int i = 0; i < n; ++i) shifted[i] = p[i] - p_prev[i];
-      S.apply(shifted, coupling_u, A_beta);
-      for (int i = 0; i < n; ++i) u_eff[i] = u_prev[i] - coupling_u[i];
-      const SolveSummary ts = solve_bounded(lo, hi, inc, u_eff, trial);
-      total.iterations += ts.iterations;
-      total.seconds += ts.seconds;
-      total.residual = ts.residual;
-      total.termination = ts.termination;
-      if (!ts.converged()) return total;
-      change = 0.0;
-      for (int i = 0; i < n; ++i)
-        change = std::max({change, std::abs(p[i] - p_last[i]), std::abs(trial.q[i] - q_last[i])});
-      p_last = p;
-      q_last = trial.q;
+void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
+  CycleResult r = begin_cycle();
+  r.Q_peak = std::abs(Q_prev_);  // the cycle starts at its top
+  double sliding = 0.0;          // rigid sliding beyond the stick limit over the cycle (m)
+  std::vector<double> hi_unloaded = hi_;
+  for (int j = 1; j <= m_; ++j) {
+    // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
+    const double xt = 2 * j <= m_ ? X_ * (1.0 - 4.0 * j / m_) : X_ * (-1.0 + 4.0 * (j - m_ / 2) / m_);
+    r.solves.push_back(step(xt, c, j));
+    sliding += std::abs(extra_);
+    end_increment(r, Q_prev_);
+    if (4 * j == m_) r.q_unloaded = state_.q, hi_unloaded = hi_;
+    if (2 * j == m_) {
+      r.q_bottom = state_.q;
+      if (coupled_) result_.p_bottom = p_;
     }
-    state = std::move(trial);
-    result.n_coupling_sweeps += sweeps;
-    result.max_coupling_sweeps = std::max(result.max_coupling_sweeps, sweeps);
-    return total;
-  };
+    if (4 * j == 3 * m_) r.q_reloaded = state_.q;
+  }
+  if (coupled_) result_.p_top = p_;
+  r.q_top = state_.q;
+  close_cycle(grid_, w_max_, w_min_, hi_, hi_unloaded, r);
+  classify(r, sliding);
+  result_.cycles.push_back(std::move(r));
+}
 
-  auto step = [&](double x_t, int cycle, int k) {
-    SolveSummary s;
-    double Qt = x_t;
-    extra = 0.0;
-    if (coupled) {
-      s = coupled_increment({Qt, Q_prev, strain_at(Qt), strain_at(Q_prev)}, cycle, k);
-      check(s, cycle, k, Qt);
-    } else if (displacement) {
-      const double delta_prev = delta_now(x_prev);
-      std::tie(Qt, s) = displacement_increment(x_t, cycle, k);
-      const double dQ = Qt - Q_prev;
-      if (extra == 0.0 && dQ != 0.0 && (x_t - delta_prev) / dQ > 0.0) compliance = (x_t - delta_prev) / dQ;
+SolveSummary IncrementalSlipSolver::AmplitudeRun::step(double x_t, int cycle, int k) {
+  SolveSummary s;
+  double Qt = x_t;
+  extra_ = 0.0;
+  if (coupled_) {
+    s = coupled_increment({Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, cycle, k);
+    check(s, cycle, k, Qt);
+  } else if (displacement_) {
+    const double delta_prev = delta_now();
+    std::tie(Qt, s) = displacement_increment(x_t, cycle, k);
+    const double dQ = Qt - Q_prev_;
+    if (extra_ == 0.0 && dQ != 0.0 && (x_t - delta_prev) / dQ > 0.0) compliance_ = (x_t - delta_prev) / dQ;
+  } else {
+    s = solver_.solve_increment(p_, f_, {Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, state_);
+    check(s, cycle, k, Qt);
+  }
+  count(s);
+  double work = 0.0;
+  for (int i = 0; i < n_; ++i) work += h_ * state_.q[i] * state_.dw[i];
+  result_.increment_energy.push_back(work);
+  result_.increment_Q.push_back(Qt);
+  result_.increment_shift.push_back(state_.shift + extra_);
+  Q_prev_ = Qt;
+  x_prev_ = x_t;
+  shift_ += state_.shift + extra_;
+  return s;
+}
+
+void IncrementalSlipSolver::AmplitudeRun::check(const SolveSummary& s, int cycle, int k, double Qt) const {
+  if (!s.converged())
+    throw ConvergenceError(fmt::format(
+        "incremental slip: {} (Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} iterations with residual {:.3g} "
+        "above the tolerance {:.3g}",
+        where(cycle, k), Q_prev_, Qt, to_string(s.termination), s.iterations, s.residual, options_.tolerance));
+}
+
+// δ(Q) is continuous and increasing (the tangential compliance is positive), so a bracket grown from the secant guess
+// and the Illinois false position find the Q whose δ is x_t; past ±f P (every cell at ±f p) the bodies slide.
+std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::displacement_increment(double x_t, int cycle,
+                                                                                             int k) {
+  DeltaSearch search(x_t, strain_at(x_t), strain_at(x_prev_), cycle, k, state_);
+  const double tol = 10.0 * options_.tolerance * std::abs(x_t - x_prev_);
+  const double Qt = std::clamp(Q_prev_ + (x_t - x_prev_) / compliance_, -capacity_, capacity_);
+  const double ft = delta_miss(search, Qt);
+  if (std::abs(ft) <= tol) return {Qt, search.total};
+  // Bracket: a with δ(a) < x_t, b with δ(b) > x_t, in doubling steps from the guess up to ±f P.
+  double a = Qt, fa = ft, b = Qt, fb = ft;
+  double step = std::max(std::abs(ft) / compliance_, 1e-6 * capacity_);
+  while (fa > 0.0) {
+    if (a == -capacity_) return {slide(a, fa), search.total};
+    b = a, fb = fa;
+    a = std::max(a - step, -capacity_);
+    fa = delta_miss(search, a);
+    step *= 2.0;
+  }
+  while (fb < 0.0) {
+    if (b == capacity_) return {slide(b, fb), search.total};
+    a = b, fa = fb;
+    b = std::min(b + step, capacity_);
+    fb = delta_miss(search, b);
+    step *= 2.0;
+  }
+  if (std::abs(fa) <= tol) return accept(search, a);
+  if (std::abs(fb) <= tol) return accept(search, b);
+  return false_position(search, a, fa, b, fb, tol);
+}
+
+double IncrementalSlipSolver::AmplitudeRun::delta_miss(DeltaSearch& search, double Q) {
+  search.last = Q;
+  search.trial.q = state_.q;  // warm start: the last evaluation (q and u = K q agree)
+  search.trial.u = state_.u;
+  const SolveSummary s =
+      solver_.solve_bounded(lo_, hi_, {Q, Q_prev_, search.eps_t, search.eps_0}, search.start.u, search.trial);
+  search.total.iterations += s.iterations;
+  search.total.seconds += s.seconds;
+  search.total.residual = std::max(search.total.residual, s.residual);
+  search.total.termination = s.termination;
+  check(s, search.cycle, search.k, Q);
+  if (++search.evaluations > kMaxEvaluations)
+    throw ConvergenceError(fmt::format("incremental slip: {} (δ from {:.6g} to {:.6g} m): no Q found in {} solves",
+                                       where(search.cycle, search.k), x_prev_, search.x_t, kMaxEvaluations));
+  state_ = search.trial;
+  const IncrementState& trial = search.trial;
+  return shift_ + trial.shift + datum_->relative_displacement(trial.q, p_) - D0_ - search.eps_t * datum_->x_c() -
+         search.x_t;
+}
+
+std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::accept(DeltaSearch& search, double Q) {
+  if (Q != search.last) delta_miss(search, Q);
+  return {Q, search.total};
+}
+
+double IncrementalSlipSolver::AmplitudeRun::slide(double Q_bound, double miss) {
+  extra_ = -miss;
+  for (int i = 0; i < n_; ++i)
+    if (hi_[i] > 0.0) state_.dw[i] += extra_;
+  return Q_bound;
+}
+
+std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::false_position(DeltaSearch& search, double a,
+                                                                                     double fa, double b, double fb,
+                                                                                     double tol) {
+  int side = 0;  // Illinois: halve the retained end's value when the same end is kept twice
+  for (;;) {
+    double Qt = (a * fb - b * fa) / (fb - fa);
+    if (!(Qt > a && Qt < b)) Qt = 0.5 * (a + b);
+    const double ft = delta_miss(search, Qt);
+    if (std::abs(ft) <= tol || b - a <= 1e-14 * capacity_) return {Qt, search.total};
+    if (ft < 0.0) {
+      a = Qt, fa = ft;
+      if (side == -1) fb *= 0.5;
+      side = -1;
     } else {
-      s = solve_increment(p, f, {Qt, Q_prev, strain_at(Qt), strain_at(Q_prev)}, state);
-      check(s, cycle, k, Qt);
+      b = Qt, fb = ft;
+      if (side == 1) fa *= 0.5;
+      side = 1;
     }
-    ++result.n_increments;
-    result.n_iterations += s.iterations;
-    if (!(s.residual <= result.worst.residual) || result.n_increments == 1) result.worst = s;
-    double work = 0.0;
-    for (int i = 0; i < n; ++i) work += h * state.q[i] * state.dw[i];
-    result.increment_energy.push_back(work);
-    result.increment_Q.push_back(Qt);
-    result.increment_shift.push_back(state.shift + extra);
-    Q_prev = Qt;
-    x_prev = x_t;
-    shift += state.shift + extra;
-    return s;
-  };
-  auto loop_point = [&]() { return LoopPoint{P, Q_prev, delta_now(x_prev)}; };
-
-  // The first loading, 0 → X, in a quarter of a cycle's increments.
-  for (int k = 1; k <= m / 4; ++k) {
-    step(X * (4.0 * k / m), 0, k);
-    if (datum) first_loading.push_back(loop_point());
   }
+}
 
-  for (int cycle = 1; cycle <= options_.cycles; ++cycle) {
-    CycleResult r;
-    std::vector<double> w(n, 0.0), w_min(n, 0.0), w_max(n, 0.0);
-    r.slip_travelled.assign(n, 0.0);
-    r.energy_density.assign(n, 0.0);
-    if (datum) {
-      r.first_loading = first_loading;
-      r.loop.push_back(loop_point());
-    }
-    double sliding = 0.0, Q_peak = std::abs(Q_prev);
-    std::vector<double> hi_unloaded = hi;
-    for (int j = 1; j <= m; ++j) {
-      // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
-      const double xt = 2 * j <= m ? X * (1.0 - 4.0 * j / m) : X * (-1.0 + 4.0 * (j - m / 2) / m);
-      r.solves.push_back(step(xt, cycle, j));
-      sliding += std::abs(extra);
-      Q_peak = std::max(Q_peak, std::abs(Q_prev));
-      if (datum) {
-        r.loop.push_back(loop_point());
-        r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
-      }
-      accumulate_slip(state, w, w_min, w_max, r);
-      if (4 * j == m) r.q_unloaded = state.q, hi_unloaded = hi;
-      if (2 * j == m) {
-        r.q_bottom = state.q;
-        if (coupled) result.p_bottom = p;
-      }
-      if (4 * j == 3 * m) r.q_reloaded = state.q;
-    }
-    if (coupled) result.p_top = p;
-    r.q_top = state.q;
-    r.Q_peak = Q_peak;
-    close_cycle(grid, w_max, w_min, hi, hi_unloaded, r);
-
-    // Reverse slip: at the top some cell is held at q = −f p (the leading edge has slipped backwards).
-    int n_backward = 0;
-    double x_backward = 0.0;
-    for (int i = 0; i < n; ++i)
-      if (hi[i] > 0.0 && r.q_top[i] <= -hi[i]) x_backward = n_backward++ == 0 ? grid.x(i) : x_backward;
-    if (sliding > 0.0) {
-      // Displacement control past the stick limit: the bodies slide rigidly by sliding/2 each half cycle.
-      r.regime = Regime::gross_slip;
-      r.sliding_amplitude = 0.25 * sliding;
-      r.message = fmt::format("Q reaches f P = {:.6g} N/m and the bodies slide {:.6g} m each way beyond the stick "
-                              "limit (sliding amplitude {:.6g} m at delta = {:.6g} m)",
-                              capacity, 0.5 * sliding, r.sliding_amplitude, X);
-      r.stick_zone.reset();
-      r.stick_zones.clear();  // a cell that never slips at the window's end is no stick zone when the bodies slide
-    } else if (n_backward > 0) {
-      r.regime = Regime::reverse_slip;
-      r.message = fmt::format("at the top of the cycle {} cells from x = {:.6g} m sit at q = -f p: the leading edge "
-                              "slips backwards (reverse slip)",
-                              n_backward, x_backward);
-    }
-    result.cycles.push_back(std::move(r));
+// A sweep k: p_k from q_{k−1}, then q_k from p_k; the increment ends when a sweep changes neither traction by more
+// than coupling_tolerance · max p_k.
+SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_increment(const SlipIncrement& inc, int cycle, int k) {
+  const std::vector<double> p_prev = p_, u_prev = state_.u;
+  std::vector<double> p_last = p_, q_last = state_.q;
+  IncrementState trial = state_;
+  SolveSummary total;
+  double change = std::numeric_limits<double>::infinity();
+  int sweeps = 0;
+  while (change > options_.coupling_tolerance * *std::max_element(p_.begin(), p_.end())) {
+    if (++sweeps > options_.max_coupling_sweeps)
+      throw ConvergenceError(fmt::format(
+          "incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal and tangential solves of "
+          "dissimilar bodies (beta = {:.4g}) still change the traction by {:.3g} of the peak pressure after {} "
+          "sweeps (coupling tolerance {:.3g})",
+          where(cycle, k), inc.Q_prev, inc.Q, coupling_->beta, change / *std::max_element(p_.begin(), p_.end()),
+          options_.max_coupling_sweeps, options_.coupling_tolerance));
+    coupled_pressure(trial.q, inc, cycle, k);
+    const SolveSummary ts = coupled_traction(inc, p_prev, u_prev, trial);
+    total.iterations += ts.iterations;
+    total.seconds += ts.seconds;
+    total.residual = ts.residual;
+    total.termination = ts.termination;
+    if (!ts.converged()) return total;
+    change = 0.0;
+    for (int i = 0; i < n_; ++i)
+      change = std::max({change, std::abs(p_[i] - p_last[i]), std::abs(trial.q[i] - q_last[i])});
+    p_last = p_;
+    q_last = trial.q;
   }
-  return result;
+  state_ = std::move(trial);
+  result_.n_coupling_sweeps += sweeps;
+  result_.max_coupling_sweeps = std::max(result_.max_coupling_sweeps, sweeps);
+  return total;
+}
+
+void IncrementalSlipSolver::AmplitudeRun::coupled_pressure(std::span<const double> q, const SlipIncrement& inc,
+                                                           int cycle, int k) {
+  std::vector<double> coupling_u(n_), gap(n_);
+  S_.apply(q, coupling_u, A_beta_);
+  for (int i = 0; i < n_; ++i) gap[i] = coupling_->g0[i] - coupling_u[i];
+  const SolveSummary ns = normal_.solve(gap, P_, normal_state_);
+  if (!ns.converged())
+    throw ConvergenceError(fmt::format("incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal "
+                                       "solve stopped ({}) with residual {:.3g}",
+                                       where(cycle, k), inc.Q_prev, inc.Q, to_string(ns.termination), ns.residual));
+  p_ = normal_state_.p;
+}
+
+// Cells that left the contact drop their traction, as under a load history; the pressure's coupling slip enters
+// through the previous displacement, u_prev − A β S (p − p_prev).
+SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_traction(const SlipIncrement& inc,
+                                                                   std::span<const double> p_prev,
+                                                                   std::span<const double> u_prev,
+                                                                   IncrementState& trial) {
+  traction_bounds(p_, f_, lo_, hi_);
+  drop_separated(kernel_, hi_, trial);
+  std::vector<double> dp(n_), coupling_u(n_), u_eff(n_);
+  for (int i = 0; i < n_; ++i) dp[i] = p_[i] - p_prev[i];
+  S_.apply(dp, coupling_u, A_beta_);
+  for (int i = 0; i < n_; ++i) u_eff[i] = u_prev[i] - coupling_u[i];
+  return solver_.solve_bounded(lo_, hi_, inc, u_eff, trial);
+}
+
+void IncrementalSlipSolver::AmplitudeRun::classify(CycleResult& r, double sliding) const {
+  int n_backward = 0;
+  double x_backward = 0.0;
+  for (int i = 0; i < n_; ++i)
+    if (hi_[i] > 0.0 && r.q_top[i] <= -hi_[i]) x_backward = n_backward++ == 0 ? grid_.x(i) : x_backward;
+  if (sliding > 0.0) {
+    // Displacement control past the stick limit: the bodies slide rigidly by sliding/2 each half cycle.
+    r.regime = Regime::gross_slip;
+    r.sliding_amplitude = 0.25 * sliding;
+    r.message = fmt::format("Q reaches f P = {:.6g} N/m and the bodies slide {:.6g} m each way beyond the stick "
+                            "limit (sliding amplitude {:.6g} m at delta = {:.6g} m)",
+                            capacity_, 0.5 * sliding, r.sliding_amplitude, X_);
+    r.stick_zone.reset();
+    r.stick_zones.clear();  // a cell that never slips at the window's end is no stick zone when the bodies slide
+  } else if (n_backward > 0) {
+    // At the top some cell is held at q = −f p: the leading edge has slipped backwards.
+    r.regime = Regime::reverse_slip;
+    r.message = fmt::format("at the top of the cycle {} cells from x = {:.6g} m sit at q = -f p: the leading edge "
+                            "slips backwards (reverse slip)",
+                            n_backward, x_backward);
+  }
 }
 
 IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& contact, const CyclicLoad& load,

@@ -571,6 +571,45 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   ContactState normal_state_;
 };
 
+// solve_history(): force control through the points of a load history, the pressure that of the normal problem at
+// each increment's P.
+class IncrementalSlipSolver::HistoryRun : public Run {
+ public:
+  HistoryRun(const IncrementalSlipSolver& solver, const ContactState& contact, const CyclicLoad& load,
+             std::span<const double> g0, const ReferenceDatum* datum);
+  // The first loading, from Q = 0, ε = 0 under the contact's P to the first point, in m/4 increments.
+  void first_loading();
+  // One steady cycle through the points into the result.
+  void cycle(int c);
+
+ private:
+  struct Target {  // the loads at the end of an increment
+    double P, Q, eps;
+  };
+
+  LoopPoint loop_point() const override { return {prev_.P, prev_.Q, delta(p_now_, prev_.eps)}; }
+  // The increments' ends: the first loading's, then each segment of the history split into ⌈m Δt / T⌉ equal steps.
+  void split(const std::vector<HistoryPoint>& H);
+  // The phases: top and bottom at the largest and the smallest Q; unloaded and reloaded where Q first crosses their
+  // mean after each.
+  void find_phases();
+  // The pressure under P: one normal solve per distinct P, warm-started from the nearest P solved.
+  const std::vector<double>& pressure_at(double P);
+  // The increment to t, solved and recorded.
+  SolveSummary step(const Target& t, int cycle, int k);
+
+  const double f_;
+  const int m_;
+  const std::span<const double> g0_;
+  const NormalSolver normal_;
+  double P0_ = 0.0;             // h Σ p of the contact (N/m)
+  std::map<double, std::vector<double>> pressures_;
+  std::vector<Target> first_, cycle_targets_;
+  int j_top_ = 0, j_bottom_ = 0, j_unloaded_ = 0, j_reloaded_ = 0;
+  std::vector<double> lo_, hi_, p_now_;
+  Target prev_;                 // the loads at the end of the last increment
+};
+
 IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, const CyclicLoad& load,
                                                const ReferenceDatum* datum, const NormalCoupling* coupling) const {
   const int n = kernel_.grid().n;
@@ -591,6 +630,24 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
                                   Q, f * P));
 
   AmplitudeRun run(*this, contact, load, datum, coupling);
+  run.first_loading();
+  for (int cycle = 1; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
+  return run.result();
+}
+
+IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& contact, const CyclicLoad& load,
+                                                       std::span<const double> g0, const ReferenceDatum* datum) const {
+  const auto& H = load.history;
+  if (H.size() < 2 || int(g0.size()) != kernel_.grid().n)
+    throw InputError("incremental slip: a load history needs two points or more and the initial gap on the grid");
+  // Gross slip anywhere in the history: as under force control, the slip is not determined.
+  for (const HistoryPoint& pt : H)
+    if (std::abs(pt.Q) >= load.f * pt.P)
+      return gross_slip(fmt::format("the load history reaches |Q| = {:.6g} N/m >= f P = {:.6g} N/m at t = {:.6g}: "
+                                    "the bodies slide, and under force control the slip is not determined",
+                                    std::abs(pt.Q), load.f * pt.P, pt.t));
+
+  HistoryRun run(*this, contact, load, g0, datum);
   run.first_loading();
   for (int cycle = 1; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
   return run.result();
@@ -908,173 +965,121 @@ void IncrementalSlipSolver::AmplitudeRun::classify(CycleResult& r, double slidin
   }
 }
 
-IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& contact, const CyclicLoad& load,
-                                                       std::span<const double> g0, const ReferenceDatum* datum) const {
-  const Grid& grid = kernel_.grid();
-  const int n = grid.n;
-  const double h = grid.h();
-  const double f = load.f;
-  const auto& H = load.history;
-  if (H.size() < 2 || int(g0.size()) != n)
-    throw InputError("incremental slip: a load history needs two points or more and the initial gap on the grid");
-  IncrementalResult result;
-  const int m = options_.increments_per_cycle;
+IncrementalSlipSolver::HistoryRun::HistoryRun(const IncrementalSlipSolver& solver, const ContactState& contact,
+                                              const CyclicLoad& load, std::span<const double> g0,
+                                              const ReferenceDatum* datum)
+    : Run(solver, contact, datum),
+      f_(load.f),
+      m_(options_.increments_per_cycle),
+      g0_(g0),
+      normal_(kernel_),
+      lo_(n_),
+      hi_(n_),
+      p_now_(contact.p) {
+  for (double pi : contact.p) P0_ += h_ * pi;
+  pressures_[P0_] = contact.p;
+  prev_ = {P0_, 0.0, 0.0};
+  split(load.history);
+  find_phases();
+}
 
-  // The increments: the first loading from (P of the contact, 0, 0) to the first point, then each segment of the
-  // history split into ⌈m Δt / T⌉ equal steps.
-  struct Target {
-    double P, Q, eps;
-  };
-  std::vector<Target> first, cycle_targets;
-  double P0 = 0.0;
-  for (double pi : contact.p) P0 += h * pi;
-  for (int k = 1; k <= m / 4; ++k) {
-    const double s = 4.0 * k / m;
-    first.push_back({P0 + s * (H[0].P - P0), s * H[0].Q, s * H[0].bulk_strain});
+void IncrementalSlipSolver::HistoryRun::split(const std::vector<HistoryPoint>& H) {
+  for (int k = 1; k <= m_ / 4; ++k) {
+    const double s = 4.0 * k / m_;
+    first_.push_back({P0_ + s * (H[0].P - P0_), s * H[0].Q, s * H[0].bulk_strain});
   }
   const double T = H.back().t - H.front().t;
   for (std::size_t j = 1; j < H.size(); ++j) {
-    const int steps = std::max(1, int(std::ceil(m * (H[j].t - H[j - 1].t) / T - 1e-9)));
+    const int steps = std::max(1, int(std::ceil(m_ * (H[j].t - H[j - 1].t) / T - 1e-9)));
     for (int k = 1; k <= steps; ++k) {
       const double s = double(k) / steps;
-      cycle_targets.push_back({H[j - 1].P + s * (H[j].P - H[j - 1].P), H[j - 1].Q + s * (H[j].Q - H[j - 1].Q),
-                               H[j - 1].bulk_strain + s * (H[j].bulk_strain - H[j - 1].bulk_strain)});
+      cycle_targets_.push_back({H[j - 1].P + s * (H[j].P - H[j - 1].P), H[j - 1].Q + s * (H[j].Q - H[j - 1].Q),
+                                H[j - 1].bulk_strain + s * (H[j].bulk_strain - H[j - 1].bulk_strain)});
     }
   }
+}
 
-  // The pressure at each distinct P: one normal solve each, warm-started from the nearest P solved.
-  const NormalSolver normal(kernel_);
-  std::map<double, std::vector<double>> pressures;
-  pressures[P0] = contact.p;
-  auto pressure_at = [&](double P) -> const std::vector<double>& {
-    if (auto it = pressures.find(P); it != pressures.end()) return it->second;
-    auto near = pressures.lower_bound(P);
-    if (near == pressures.end() || (near != pressures.begin() && P - std::prev(near)->first < near->first - P))
-      near = std::prev(near);
-    ContactState state;
-    state.p = near->second;
-    const SolveSummary s = normal.solve(g0, P, state);
-    if (!s.converged())
-      throw ConvergenceError(fmt::format("incremental slip: the normal solve at P = {:.6g} N/m of the load history "
-                                         "stopped ({}) with residual {:.3g}",
-                                         P, to_string(s.termination), s.residual));
-    return pressures[P] = std::move(state.p);
-  };
-  auto bounds = [&](double P, std::vector<double>& lo, std::vector<double>& hi) {
-    const std::vector<double>& p = pressure_at(P);
-    double capacity = 0.0;
-    for (int i = 0; i < n; ++i) {
-      hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-      lo[i] = -hi[i];
-      capacity += h * hi[i];
-    }
-    return capacity;
-  };
-  // Gross slip anywhere in the history: as under force control, the slip is not determined.
-  {
-    for (const HistoryPoint& pt : H) {
-      if (std::abs(pt.Q) >= f * pt.P) {
-        CycleResult r;
-        r.regime = Regime::gross_slip;
-        r.message = fmt::format("the load history reaches |Q| = {:.6g} N/m >= f P = {:.6g} N/m at t = {:.6g}: the "
-                                "bodies slide, and under force control the slip is not determined",
-                                std::abs(pt.Q), f * pt.P, pt.t);
-        result.cycles.push_back(std::move(r));
-        return result;
-      }
-    }
+void IncrementalSlipSolver::HistoryRun::find_phases() {
+  const auto& targets = cycle_targets_;
+  for (std::size_t j = 0; j < targets.size(); ++j) {
+    if (targets[j].Q > targets[j_top_].Q) j_top_ = int(j);
+    if (targets[j].Q < targets[j_bottom_].Q) j_bottom_ = int(j);
   }
-
-  IncrementState state;
-  state.q.assign(n, 0.0);
-  state.u.assign(n, 0.0);
-  std::vector<double> lo(n), hi(n), p_now = contact.p;
-  Target prev{P0, 0.0, 0.0};
-  double shift = 0.0;
-  const double D0 = datum ? datum->relative_displacement(std::vector<double>(n, 0.0), contact.p) : 0.0;
-  auto delta_now = [&]() {
-    return shift + datum->relative_displacement(state.q, p_now) - D0 - prev.eps * datum->x_c();
-  };
-  auto step = [&](const Target& t, int cycle, int k) {
-    bounds(t.P, lo, hi);
-    p_now = pressure_at(t.P);
-    const std::vector<double> u_prev = state.u;
-    bool dropped = false;  // cells that separate drop their traction within the increment
-    for (int i = 0; i < n; ++i)
-      if (hi[i] == 0.0 && state.q[i] != 0.0) state.q[i] = 0.0, dropped = true;
-    if (dropped) kernel_.apply(state.q, state.u);
-    const SolveSummary s = solve_bounded(lo, hi, {t.Q, prev.Q, t.eps, prev.eps}, u_prev, state);
-    ++result.n_increments;
-    result.n_iterations += s.iterations;
-    if (!(s.residual <= result.worst.residual) || result.n_increments == 1) result.worst = s;
-    if (!s.converged())
-      throw ConvergenceError(fmt::format(
-          "incremental slip: {} increment {} of the load history (P {:.6g}, Q from {:.6g} to {:.6g} N/m) stopped "
-          "({}) after {} iterations with residual {:.3g} above the tolerance {:.3g}",
-          cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle), k, t.P, prev.Q, t.Q,
-          to_string(s.termination), s.iterations, s.residual, options_.tolerance));
-    prev = t;
-    shift += state.shift;
-    return s;
-  };
-
-  std::vector<LoopPoint> first_loading;
-  if (datum) first_loading.push_back({P0, 0.0, 0.0});
-  for (std::size_t k = 0; k < first.size(); ++k) {
-    step(first[k], 0, int(k) + 1);
-    if (datum) first_loading.push_back({prev.P, prev.Q, delta_now()});
-  }
-
-  // The phases: top and bottom at the largest and smallest Q; unloaded and reloaded where Q first crosses their
-  // mean after each.
-  int j_top = 0, j_bottom = 0;
-  for (std::size_t j = 0; j < cycle_targets.size(); ++j) {
-    if (cycle_targets[j].Q > cycle_targets[j_top].Q) j_top = int(j);
-    if (cycle_targets[j].Q < cycle_targets[j_bottom].Q) j_bottom = int(j);
-  }
-  const double Q_mid = 0.5 * (cycle_targets[j_top].Q + cycle_targets[j_bottom].Q);
-  const int n_targets = int(cycle_targets.size());
+  const double Q_mid = 0.5 * (targets[j_top_].Q + targets[j_bottom_].Q);
+  const int n_targets = int(targets.size());
   auto crossing = [&](int from, bool down) {
     for (int k = 1; k <= n_targets; ++k) {
       const int j = (from + k) % n_targets;
-      if (down ? cycle_targets[j].Q <= Q_mid : cycle_targets[j].Q >= Q_mid) return j;
+      if (down ? targets[j].Q <= Q_mid : targets[j].Q >= Q_mid) return j;
     }
     return from;
   };
-  const int j_unloaded = crossing(j_top, true), j_reloaded = crossing(j_bottom, false);
+  j_unloaded_ = crossing(j_top_, true);
+  j_reloaded_ = crossing(j_bottom_, false);
+}
 
-  for (int cycle = 1; cycle <= options_.cycles; ++cycle) {
-    CycleResult r;
-    std::vector<double> w(n, 0.0), w_min(n, 0.0), w_max(n, 0.0), hi_top, hi_unloaded;
-    r.slip_travelled.assign(n, 0.0);
-    r.energy_density.assign(n, 0.0);
-    if (datum) {
-      r.first_loading = first_loading;
-      r.loop.push_back({prev.P, prev.Q, delta_now()});
-    }
-    for (int j = 0; j < n_targets; ++j) {
-      r.solves.push_back(step(cycle_targets[j], cycle, j + 1));
-      r.Q_peak = std::max(r.Q_peak, std::abs(prev.Q));
-      if (datum) {
-        r.loop.push_back({prev.P, prev.Q, delta_now()});
-        r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
-      }
-      accumulate_slip(state, w, w_min, w_max, r);
-      if (j == j_top) r.q_top = state.q, hi_top = hi;
-      if (j == j_bottom) r.q_bottom = state.q;
-      if (j == j_unloaded) r.q_unloaded = state.q, hi_unloaded = hi;
-      if (j == j_reloaded) r.q_reloaded = state.q;
-    }
-    close_cycle(grid, w_max, w_min, hi_top, hi_unloaded, r);
-    int n_backward = 0;
-    for (int i = 0; i < n; ++i) n_backward += hi_top[i] > 0.0 && r.q_top[i] <= -hi_top[i];
-    if (n_backward > 0) {
-      r.regime = Regime::reverse_slip;
-      r.message = fmt::format("at the top of the cycle {} cells sit at q = -f p (reverse slip)", n_backward);
-    }
-    result.cycles.push_back(std::move(r));
+const std::vector<double>& IncrementalSlipSolver::HistoryRun::pressure_at(double P) {
+  if (auto it = pressures_.find(P); it != pressures_.end()) return it->second;
+  auto near = pressures_.lower_bound(P);
+  if (near == pressures_.end() || (near != pressures_.begin() && P - std::prev(near)->first < near->first - P))
+    near = std::prev(near);
+  ContactState state;
+  state.p = near->second;
+  const SolveSummary s = normal_.solve(g0_, P, state);
+  if (!s.converged())
+    throw ConvergenceError(fmt::format("incremental slip: the normal solve at P = {:.6g} N/m of the load history "
+                                       "stopped ({}) with residual {:.3g}",
+                                       P, to_string(s.termination), s.residual));
+  return pressures_[P] = std::move(state.p);
+}
+
+void IncrementalSlipSolver::HistoryRun::first_loading() {
+  if (datum_) first_loading_.push_back({P0_, 0.0, 0.0});
+  for (std::size_t k = 0; k < first_.size(); ++k) {
+    step(first_[k], 0, int(k) + 1);
+    if (datum_) first_loading_.push_back(loop_point());
   }
-  return result;
+}
+
+void IncrementalSlipSolver::HistoryRun::cycle(int c) {
+  CycleResult r = begin_cycle();
+  std::vector<double> hi_top, hi_unloaded;
+  for (int j = 0; j < int(cycle_targets_.size()); ++j) {
+    r.solves.push_back(step(cycle_targets_[j], c, j + 1));
+    end_increment(r, prev_.Q);
+    if (j == j_top_) r.q_top = state_.q, hi_top = hi_;
+    if (j == j_bottom_) r.q_bottom = state_.q;
+    if (j == j_unloaded_) r.q_unloaded = state_.q, hi_unloaded = hi_;
+    if (j == j_reloaded_) r.q_reloaded = state_.q;
+  }
+  close_cycle(grid_, w_max_, w_min_, hi_top, hi_unloaded, r);
+  int n_backward = 0;
+  for (int i = 0; i < n_; ++i) n_backward += hi_top[i] > 0.0 && r.q_top[i] <= -hi_top[i];
+  if (n_backward > 0) {
+    r.regime = Regime::reverse_slip;
+    r.message = fmt::format("at the top of the cycle {} cells sit at q = -f p (reverse slip)", n_backward);
+  }
+  result_.cycles.push_back(std::move(r));
+}
+
+// At a new P the bounds ±f p change: cells that separate drop their traction (the drop is part of the increment's
+// Δq), and q above its new bound is clamped by the increment's projection.
+SolveSummary IncrementalSlipSolver::HistoryRun::step(const Target& t, int cycle, int k) {
+  const std::vector<double>& p = pressure_at(t.P);
+  traction_bounds(p, f_, lo_, hi_);
+  p_now_ = p;
+  const std::vector<double> u_prev = state_.u;
+  drop_separated(kernel_, hi_, state_);
+  const SolveSummary s = solver_.solve_bounded(lo_, hi_, {t.Q, prev_.Q, t.eps, prev_.eps}, u_prev, state_);
+  count(s);
+  if (!s.converged())
+    throw ConvergenceError(fmt::format(
+        "incremental slip: {} of the load history (P {:.6g}, Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} "
+        "iterations with residual {:.3g} above the tolerance {:.3g}",
+        where(cycle, k), t.P, prev_.Q, t.Q, to_string(s.termination), s.iterations, s.residual, options_.tolerance));
+  prev_ = t;
+  shift_ += state_.shift;
+  return s;
 }
 
 }  // namespace fretwear

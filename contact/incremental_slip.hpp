@@ -180,6 +180,7 @@ class IncrementalSlipSolver {
  private:
   class Run;           // what solve() and solve_history() carry from increment to increment (incremental_slip.cpp)
   class AmplitudeRun;  // solve(): Q, or δ, cycling 0 → +X → −X → +X under constant P
+  class HistoryRun;    // solve_history(): the points of a load history
 
   // solve_increment with the bounds given and the previous increment's K q in u_prev (state.q: the start).
   SolveSummary solve_bounded(std::span<const double> lo, std::span<const double> hi, const SlipIncrement& inc,

@@ -136,6 +136,166 @@ Eigen::VectorXd CrackSolver::open_density(const Eigen::VectorXd& rhs) const {
   return phi;
 }
 
+namespace {
+
+// Every active-set pass changes all the violating points up to this many passes, then only the worst one.
+constexpr int kAllAtOnce = 20;
+
+// The contact of the crack faces at the collocation points by an active set (header, "Face contact"): each point
+// open (0), stuck (1) or slipping (±2, with the sign of the slip h). On a set the closed points' rows of M φ = −σ
+// become g(t_k) = 0 and either h(t_k) = 0 (stick) or T = f p sign(h) (slip).
+class FaceContact {
+ public:
+  FaceContact(const Eigen::MatrixXd& M, const Eigen::MatrixXd& Q, const Eigen::Map<const Eigen::VectorXd>& L,
+              const Eigen::VectorXd& sigma, double friction, double scale, double tol, double tol_K)
+      : M_(M), Q_(Q), L_(L), sigma_(sigma), N_(Q.rows()), f_(friction), scale_(scale), tol_(tol), tol_K_(tol_K) {
+    Tn = Eigen::VectorXd::Zero(N_);
+    Tt = Eigen::VectorXd::Zero(N_);
+  }
+
+  // The open crack's set, from its density phi: closed where its faces overlap (g < 0) and at the tip if
+  // K_I_open < 0. Returns whether any point closed.
+  bool close_overlaps(double K_I_open);
+  // Pass after pass from that set until no inequality is violated, or a cycle of sets keeps its least violating one
+  // (if its violation is below kCycleTolerance of the load). False if neither happens in max_passes.
+  bool settle(int max_passes, double load);
+
+  std::vector<int> state;   // 0 open, 1 stick, ±2 slip with sign(h) = ±1
+  Eigen::VectorXd phi;      // (φ₁, φ₂) at the nodes (Pa)
+  Eigen::VectorXd Tn, Tt;   // the total normal and shear traction across the faces, σ + M φ (Pa)
+  Eigen::VectorXd g, h;     // the opening and the slip integrals Q φ₁, Q φ₂ at the collocation points (Pa)
+  double K_I = 0.0;         // √(2πl) φ₁(1) (Pa√m)
+  int passes = 0;
+
+ private:
+  // A set tried, with its solution and its largest violation.
+  struct Pass {
+    std::vector<int> state;
+    Eigen::VectorXd phi;
+    double worst;
+  };
+
+  // The state of a point that closes: it keeps sliding the way the faces were sliding there (h); it sticks only with
+  // friction and no slip to follow.
+  int closing(double slip) const { return slip > 0.0 ? 2 : slip < 0.0 ? -2 : f_ > 0.0 ? 1 : 2; }
+  // φ, the tractions, g, h and K_I on the current set.
+  void solve_on_set();
+  // Every violated inequality, by how much (Pa), and in next the state that removes it.
+  std::vector<std::pair<double, Eigen::Index>> violations(std::vector<int>& next) const;
+  // The least violating set of the cycle [first, last) and its solution, if its violation is a discretisation-sized
+  // fraction of the load.
+  bool keep_best(std::vector<Pass>::const_iterator first, std::vector<Pass>::const_iterator last, double load);
+
+  const Eigen::MatrixXd& M_;
+  const Eigen::MatrixXd& Q_;
+  const Eigen::Map<const Eigen::VectorXd>& L_;
+  const Eigen::VectorXd& sigma_;
+  const Eigen::Index N_;
+  const double f_, scale_, tol_, tol_K_;
+};
+
+bool FaceContact::close_overlaps(double K_I_open) {
+  state.assign(std::size_t(N_), 0);
+  g = Q_ * phi.head(N_);
+  h = Q_ * phi.tail(N_);
+  bool overlap = K_I_open < -tol_K_;
+  for (Eigen::Index k = 0; k < N_; ++k)
+    if (g(k) < -tol_) state[k] = closing(h(k)), overlap = true;
+  if (K_I_open < -tol_K_) state[0] = closing(h(0));
+  K_I = K_I_open;
+  return overlap;
+}
+
+bool FaceContact::settle(int max_passes, double load) {
+  std::vector<Pass> tried;  // every set tried: a set met again closes a cycle
+  for (int it = 1; it <= max_passes; ++it) {
+    passes = it;
+    solve_on_set();
+    std::vector<int> next = state;
+    const auto violated = violations(next);
+    if (violated.empty()) return true;
+    const auto worst = std::max_element(violated.begin(), violated.end());
+    tried.push_back({state, phi, worst->first});
+    // The first passes change every violating point, later ones only the worst, which breaks the cycles a stick–slip
+    // or open–closed boundary falling between two collocation points can cause.
+    if (it <= kAllAtOnce) {
+      state = next;
+    } else {
+      state[worst->second] = next[worst->second];
+    }
+    const auto seen = std::find_if(tried.begin(), tried.end(), [&](const Pass& q) { return q.state == state; });
+    if (seen != tried.end()) return keep_best(seen, tried.end(), load);
+  }
+  return false;
+}
+
+void FaceContact::solve_on_set() {
+  Eigen::MatrixXd A = M_;
+  Eigen::VectorXd b = -sigma_;
+  for (Eigen::Index k = 0; k < N_; ++k) {
+    if (state[k] == 0) continue;
+    A.row(k).setZero();  // g(t_k) = 0
+    A.row(k).head(N_) = Q_.row(k);
+    b(k) = 0.0;
+    if (state[k] == 1) {  // h(t_k) = 0
+      A.row(N_ + k).setZero();
+      A.row(N_ + k).tail(N_) = Q_.row(k);
+      b(N_ + k) = 0.0;
+    } else {  // T = f p sign(h) = −f sign(h) σ_n,total
+      const double fs = f_ * (state[k] > 0 ? 1.0 : -1.0);
+      A.row(N_ + k) = M_.row(N_ + k) + fs * M_.row(k);
+      b(N_ + k) = -(sigma_(N_ + k) + fs * sigma_(k));
+    }
+  }
+  phi = A.partialPivLu().solve(b);
+  const Eigen::VectorXd total = sigma_ + M_ * phi;
+  Tn = total.head(N_);
+  Tt = total.tail(N_);
+  g = Q_ * phi.head(N_);
+  h = Q_ * phi.tail(N_);
+  K_I = scale_ * L_.dot(phi.head(N_));
+}
+
+// Closing where g < 0 or where K_I < 0 at an open tip; opening where p < 0; slipping where |T| > f p; sticking where
+// the slip reverses.
+std::vector<std::pair<double, Eigen::Index>> FaceContact::violations(std::vector<int>& next) const {
+  std::vector<std::pair<double, Eigen::Index>> violated;
+  for (Eigen::Index k = 0; k < N_; ++k) {
+    const double p = -Tn(k);
+    double by = 0.0;
+    if (state[k] == 0) {
+      if (g(k) < -tol_) next[k] = closing(h(k)), by = -g(k);
+    } else if (p < -tol_) {
+      next[k] = 0, by = -p;
+    } else if (state[k] == 1) {
+      if (std::abs(Tt(k)) > f_ * p + tol_) next[k] = Tt(k) > 0.0 ? 2 : -2, by = std::abs(Tt(k)) - f_ * p;
+    } else if (const double hs = state[k] > 0 ? h(k) : -h(k); hs < -tol_) {
+      next[k] = 1, by = -hs;
+    }
+    if (next[k] != state[k]) violated.emplace_back(by, k);
+  }
+  if (state[0] == 0 && K_I < -tol_K_ && next[0] == 0) next[0] = closing(h(0)), violated.emplace_back(-K_I / scale_, 0);
+  return violated;
+}
+
+// A cycle: the discrete inequalities have no exact solution on these points (a zone boundary that falls between two
+// of them).
+bool FaceContact::keep_best(std::vector<Pass>::const_iterator first, std::vector<Pass>::const_iterator last,
+                            double load) {
+  const auto best = std::min_element(first, last, [](const Pass& u, const Pass& v) { return u.worst < v.worst; });
+  if (best->worst > kCycleTolerance * load) return false;
+  state = best->state;
+  phi = best->phi;
+  const Eigen::VectorXd kept = sigma_ + M_ * phi;
+  Tn = kept.head(N_);
+  Tt = kept.tail(N_);
+  g = Q_ * phi.head(N_);
+  K_I = scale_ * L_.dot(phi.head(N_));
+  return true;
+}
+
+}  // namespace
+
 CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std::span<const double> shear,
                                    bool detail) const {
   const Eigen::Index N = Eigen::Index(s_.size());
@@ -147,133 +307,40 @@ CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std
   const double load = std::max(sigma.cwiseAbs().maxCoeff(), 1e-300);
   const double tol = 1e-10 * load, tol_K = 1e-10 * load * scale;
 
-  Eigen::VectorXd phi = open_density(-sigma);
+  // The open crack; where its faces would overlap they touch, and the active set settles their contact.
+  FaceContact c(M_, Q_, L, sigma, crack_.face_friction, scale, tol, tol_K);
+  c.phi = open_density(-sigma);
   CrackSif r;
   r.l = l;
-  r.K_I_open = scale * L.dot(phi.head(N));
-  r.K_II_open = scale * L.dot(phi.tail(N));
-
-  // States: 0 open, 1 stick, +2/−2 slip with sign(h) = ±1.
-  std::vector<int> state(std::size_t(N), 0);
-  Eigen::VectorXd g = Q_ * phi.head(N);
-  // A point that closes keeps sliding the way the faces were sliding there (h); it sticks only with friction and
-  // no slip to follow.
-  const auto closing = [&](double h) { return h > 0.0 ? 2 : h < 0.0 ? -2 : crack_.face_friction > 0.0 ? 1 : 2; };
-  Eigen::VectorXd h = Q_ * phi.tail(N);
-  bool overlap = r.K_I_open < -tol_K;
-  for (Eigen::Index k = 0; k < N; ++k)
-    if (g(k) < -tol) state[k] = closing(h(k)), overlap = true;
-  if (r.K_I_open < -tol_K) state[0] = closing(h(0));
-
-  Eigen::VectorXd Tn = Eigen::VectorXd::Zero(N), Tt = Eigen::VectorXd::Zero(N);
-  double K_I = r.K_I_open;
-  if (overlap) {
-    const double f = crack_.face_friction;
-    bool settled = false;
-    // Every set tried, with the solution and its largest violation: a set met again closes a cycle.
-    struct Pass {
-      std::vector<int> state;
-      Eigen::VectorXd phi;
-      double worst;
-    };
-    std::vector<Pass> passes;
-    for (int it = 1; it <= options_.max_contact_iterations && !settled; ++it) {
-      r.contact_iterations = it;
-      Eigen::MatrixXd A = M_;
-      Eigen::VectorXd b = -sigma;
-      for (Eigen::Index k = 0; k < N; ++k) {
-        if (state[k] == 0) continue;
-        A.row(k).setZero();  // g(t_k) = 0
-        A.row(k).head(N) = Q_.row(k);
-        b(k) = 0.0;
-        if (state[k] == 1) {  // h(t_k) = 0
-          A.row(N + k).setZero();
-          A.row(N + k).tail(N) = Q_.row(k);
-          b(N + k) = 0.0;
-        } else {  // T = f p sign(h) = −f sign(h) σ_n,total
-          const double fs = f * (state[k] > 0 ? 1.0 : -1.0);
-          A.row(N + k) = M_.row(N + k) + fs * M_.row(k);
-          b(N + k) = -(sigma(N + k) + fs * sigma(k));
-        }
-      }
-      phi = A.partialPivLu().solve(b);
-      const Eigen::VectorXd total = sigma + M_ * phi;
-      Tn = total.head(N);
-      Tt = total.tail(N);
-      g = Q_ * phi.head(N);
-      h = Q_ * phi.tail(N);
-      K_I = scale * L.dot(phi.head(N));
-      // Every violated inequality, by how much (Pa). The first passes change every violating point; past
-      // kAllAtOnce passes only the worst one, which breaks the cycles a stick–slip or open–closed boundary
-      // falling between two collocation points can cause.
-      std::vector<std::pair<double, Eigen::Index>> violations;
-      std::vector<int> next = state;
-      for (Eigen::Index k = 0; k < N; ++k) {
-        const double p = -Tn(k);
-        double by = 0.0;
-        if (state[k] == 0) {
-          if (g(k) < -tol) next[k] = closing(h(k)), by = -g(k);
-        } else if (p < -tol) {
-          next[k] = 0, by = -p;
-        } else if (state[k] == 1) {
-          if (std::abs(Tt(k)) > f * p + tol) next[k] = Tt(k) > 0.0 ? 2 : -2, by = std::abs(Tt(k)) - f * p;
-        } else if (const double hs = state[k] > 0 ? h(k) : -h(k); hs < -tol) {
-          next[k] = 1, by = -hs;
-        }
-        if (next[k] != state[k]) violations.emplace_back(by, k);
-      }
-      if (state[0] == 0 && K_I < -tol_K && next[0] == 0) next[0] = closing(h(0)), violations.emplace_back(-K_I / scale, 0);
-      settled = violations.empty();
-      if (settled) break;
-      passes.push_back({state, phi, std::max_element(violations.begin(), violations.end())->first});
-      constexpr int kAllAtOnce = 20;
-      if (it <= kAllAtOnce) {
-        state = next;
-      } else {
-        const Eigen::Index k = std::max_element(violations.begin(), violations.end())->second;
-        state[k] = next[k];
-      }
-      const auto seen = std::find_if(passes.begin(), passes.end(), [&](const Pass& q) { return q.state == state; });
-      if (seen != passes.end()) {
-        // A cycle: the discrete inequalities have no exact solution on these points (a zone boundary that falls
-        // between two of them). Keep the cycle's least violating set if its violation is a discretisation-sized
-        // fraction of the load.
-        const auto best = std::min_element(seen, passes.end(), [](const Pass& u, const Pass& v) { return u.worst < v.worst; });
-        if (best->worst > kCycleTolerance * load) break;
-        state = best->state;
-        phi = best->phi;
-        const Eigen::VectorXd kept = sigma + M_ * phi;
-        Tn = kept.head(N);
-        Tt = kept.tail(N);
-        g = Q_ * phi.head(N);
-        K_I = scale * L.dot(phi.head(N));
-        settled = true;
-      }
-    }
+  r.K_I_open = scale * L.dot(c.phi.head(N));
+  r.K_II_open = scale * L.dot(c.phi.tail(N));
+  if (c.close_overlaps(r.K_I_open)) {
+    const bool settled = c.settle(options_.max_contact_iterations, load);
+    r.contact_iterations = c.passes;
     if (!settled)
       throw ConvergenceError(fmt::format(
           "crack face contact: the open/stick/slip set did not settle in {} passes (l = {} m, angle {}°, face "
           "friction {}); raise max_contact_iterations or change the quadrature",
-          options_.max_contact_iterations, l, crack_.angle_deg, f));
+          options_.max_contact_iterations, l, crack_.angle_deg, crack_.face_friction));
   }
-  r.closed = state[0] != 0;
-  r.K_I = r.closed ? 0.0 : std::max(K_I, 0.0);
-  r.K_II = scale * L.dot(phi.tail(N));
-  r.closed_fraction = double(std::count_if(state.begin(), state.end(), [](int s) { return s != 0; })) / double(N);
+  r.closed = c.state[0] != 0;
+  r.K_I = r.closed ? 0.0 : std::max(c.K_I, 0.0);
+  r.K_II = scale * L.dot(c.phi.tail(N));
+  r.closed_fraction = double(std::count_if(c.state.begin(), c.state.end(), [](int s) { return s != 0; })) / double(N);
 
   CrackFaces out;
   out.sif = r;
   if (detail) {
-    h = Q_ * phi.tail(N);
+    const Eigen::VectorXd h = Q_ * c.phi.tail(N);
     for (Eigen::Index k = 0; k < N; ++k) {
       out.eta.push_back(0.5 * l * (1.0 + t_[k]));
-      out.opening.push_back(0.5 * l * g(k));
+      out.opening.push_back(0.5 * l * c.g(k));
       out.slip.push_back(0.5 * l * h(k));
-      out.pressure.push_back(state[k] == 0 ? 0.0 : -Tn(k));
-      out.shear.push_back(state[k] == 0 ? 0.0 : Tt(k));
-      out.state.push_back(state[k] == 0   ? CrackFaces::State::open
-                          : state[k] == 1 ? CrackFaces::State::stick
-                                          : CrackFaces::State::slip);
+      out.pressure.push_back(c.state[k] == 0 ? 0.0 : -c.Tn(k));
+      out.shear.push_back(c.state[k] == 0 ? 0.0 : c.Tt(k));
+      out.state.push_back(c.state[k] == 0   ? CrackFaces::State::open
+                          : c.state[k] == 1 ? CrackFaces::State::stick
+                                            : CrackFaces::State::slip);
     }
   }
   return out;

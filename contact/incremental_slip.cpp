@@ -91,16 +91,29 @@ bool project(std::span<const double> y, std::span<const double> lo, std::span<co
   return changed;
 }
 
+// The traction bounds ±f p of the pressure p: zero off the contact.
+void traction_bounds(std::span<const double> p, double f, std::span<double> lo, std::span<double> hi) {
+  for (std::size_t i = 0; i < hi.size(); ++i) {
+    hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
+    lo[i] = -hi[i];
+  }
+}
+
+// The cells whose bound has closed (they left the contact) drop their traction, and u = K q follows.
+void drop_separated(const HalfPlaneKernel& kernel, std::span<const double> hi, IncrementState& state) {
+  bool dropped = false;
+  for (std::size_t i = 0; i < hi.size(); ++i)
+    if (hi[i] == 0.0 && state.q[i] != 0.0) state.q[i] = 0.0, dropped = true;
+  if (dropped) kernel.apply(state.q, state.u);
+}
+
 }  // namespace
 
 SolveSummary IncrementalSlipSolver::solve_increment(std::span<const double> p, double f, const SlipIncrement& inc,
                                                     IncrementState& state) const {
   const int n = kernel_.grid().n;
   std::vector<double> lo(n), hi(n);
-  for (int i = 0; i < n; ++i) {
-    hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-    lo[i] = -hi[i];
-  }
+  traction_bounds(p, f, lo, hi);
   if (int(state.q.size()) != n || int(state.u.size()) != n) {
     state.q.assign(n, 0.0);
     state.u.assign(n, 0.0);
@@ -122,13 +135,234 @@ SolveSummary IncrementalSlipSolver::solve_bounded(std::span<const double> lo, st
   return second;
 }
 
+namespace {
+
+// A preconditioned run that has not halved its best residual for this many iterations has stalled.
+constexpr int kStallIterations = 200;
+
+// One run of the header's constrained CG with two-sided bounds (after Polonsky and Keer 1999) for one increment: the
+// traction q with u = K q (state, u carried from iterate to iterate), the KKT gradient g = Δs − λ and the conjugate
+// direction t on the working set.
+class BoxConstrainedCg {
+ public:
+  // Zeroes state.dw: no slip unless the increment converges.
+  BoxConstrainedCg(const HalfPlaneKernel& kernel, std::span<const double> lo, std::span<const double> hi,
+                   const SlipIncrement& inc, std::span<const double> u_prev, IncrementState& state,
+                   bool preconditioned);
+
+  bool preconditioned() const { return preconditioned_; }
+  // Some cell can carry traction, and the bounds can carry |Q|: h Σ hi ≥ |Q|.
+  bool feasible() const { return last_ >= 0 && !(std::abs(inc_.Q) > capacity_); }
+  // The slip scale d, and a feasible start: the previous traction shifted uniformly (and clamped) to the new load.
+  void start();
+  // r of the stopping criterion, on an exact u whenever r could stop the run (`last`: the iteration limit is reached).
+  double residual(double tolerance, bool last);
+  // What a converged increment leaves: the slip Δw on the cells at a bound and the rigid shift λ.
+  void record_slip();
+  // The working set: the free cells and the bound cells the residual pulls inward; g on its load-neutral subspace.
+  void select_working_set();
+  // t = z + β t on the working set, z = g or its preconditioned form; β = 0 after a restart.
+  void conjugate_direction();
+  // τ = g·t / t·K t, with v = K t; NaN unless t·K t > 0.
+  double step_length();
+  // q ← the projection of q − τ t onto the box and the load over the working set; u follows.
+  void step(double tau);
+
+ private:
+  // r = K (q − q_prev) + Δε x, λ its mean over the free cells, g = r − λ; returns the largest KKT violation over d.
+  double kkt_residual();
+
+  const HalfPlaneKernel& kernel_;
+  const Grid& grid_;
+  const std::span<const double> lo_, hi_, u_prev_;
+  const SlipIncrement& inc_;
+  IncrementState& state_;
+  std::vector<double>& q_;
+  std::vector<double>& u_;
+  const bool preconditioned_;
+  const int n_;
+  const double h_;
+  std::vector<char> contact_;     // hi > 0: the cells that can carry traction
+  int first_ = 0, last_ = -1;     // the first and the last of them
+  double capacity_ = 0.0;         // h Σ hi (N/m)
+  double d_eps_ = 0.0;            // ε − ε_prev
+  double d_ = 0.0;                // the slip scale of the stopping criterion (m)
+  double target_ = 0.0;           // Σ q = Q / h
+  std::vector<char> work_, work_old_;  // the working set, now and at the last iteration
+  std::vector<double> r_, g_, t_, v_, z_, y_;
+  bool u_exact_ = true;
+  double rz_old_ = 1.0;           // g·z of the previous direction
+  double lambda_ = 0.0;           // λ: the multiplier of the load (m)
+  bool restart_ = true;           // the next direction is a steepest-descent one
+  int n_work_ = 0;
+};
+
+BoxConstrainedCg::BoxConstrainedCg(const HalfPlaneKernel& kernel, std::span<const double> lo,
+                                   std::span<const double> hi, const SlipIncrement& inc,
+                                   std::span<const double> u_prev, IncrementState& state, bool preconditioned)
+    : kernel_(kernel),
+      grid_(kernel.grid()),
+      lo_(lo),
+      hi_(hi),
+      u_prev_(u_prev),
+      inc_(inc),
+      state_(state),
+      q_(state.q),
+      u_(state.u),
+      preconditioned_(preconditioned),
+      n_(grid_.n),
+      h_(grid_.h()),
+      contact_(n_),
+      work_(n_, 0),
+      work_old_(n_, 0),
+      r_(n_, 0.0),
+      g_(n_, 0.0),
+      t_(n_, 0.0),
+      v_(n_),
+      z_(n_),
+      y_(n_) {
+  first_ = n_;
+  for (int i = 0; i < n_; ++i) {
+    contact_[i] = hi_[i] > 0.0;
+    if (contact_[i]) first_ = std::min(first_, i), last_ = i, capacity_ += h_ * hi_[i];
+  }
+  state_.dw.assign(n_, 0.0);
+}
+
+void BoxConstrainedCg::start() {
+  d_eps_ = inc_.bulk_strain - inc_.bulk_strain_prev;
+  const double half_span = 0.5 * (grid_.x(last_) - grid_.x(first_) + h_);
+  d_ = kernel_.A() * std::abs(inc_.Q - inc_.Q_prev) + std::abs(d_eps_) * half_span;
+  if (!(d_ > 0.0)) d_ = kernel_.A() * capacity_;  // nothing changes: measure against the contact's own scale
+  target_ = inc_.Q / h_;
+  const std::vector<double> y = q_;
+  if (project(y, lo_, hi_, contact_, target_, q_)) kernel_.apply(q_, u_);
+  u_exact_ = true;
+}
+
+double BoxConstrainedCg::residual(double tolerance, bool last) {
+  double r = kkt_residual();
+  // Stop only on an exact u: recompute K q once the carried one says converged (or at the last iteration).
+  while (!u_exact_ && (r <= tolerance || last)) {
+    kernel_.apply(q_, u_);
+    u_exact_ = true;
+    r = kkt_residual();
+  }
+  return r;
+}
+
+double BoxConstrainedCg::kkt_residual() {
+  double r_free = 0.0, r_upper = -std::numeric_limits<double>::infinity(), r_lower = -r_upper;
+  int n_free = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (!contact_[i]) continue;
+    r_[i] = u_[i] - u_prev_[i] + d_eps_ * grid_.x(i);
+    if (q_[i] >= hi_[i]) {
+      r_upper = std::max(r_upper, r_[i]);
+    } else if (q_[i] <= lo_[i]) {
+      r_lower = std::min(r_lower, r_[i]);
+    } else {
+      r_free += r_[i];
+      ++n_free;
+    }
+  }
+  if (n_free > 0) {
+    lambda_ = r_free / n_free;
+  } else {  // every cell at a bound: any λ in [max over q = +fp, min over q = −fp] satisfies the KKT conditions
+    lambda_ = std::isfinite(r_upper) && std::isfinite(r_lower) ? 0.5 * (r_upper + r_lower)
+              : std::isfinite(r_upper)                         ? r_upper
+                                                               : r_lower;
+  }
+  double violation = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (!contact_[i]) continue;
+    g_[i] = r_[i] - lambda_;
+    const double vi = q_[i] >= hi_[i]   ? std::max(g_[i], 0.0)
+                      : q_[i] <= lo_[i] ? std::max(-g_[i], 0.0)
+                                        : std::abs(g_[i]);
+    violation = std::max(violation, vi);
+  }
+  return violation / d_;
+}
+
+// Δw = −Δs on the cells at a bound; the cells that stick do not slip, nor does a bound cell whose residual points
+// inward by less than the tolerance (it is taken as sticking, so that q Δw ≥ 0 holds exactly).
+void BoxConstrainedCg::record_slip() {
+  for (int i = 0; i < n_; ++i) {
+    if (!contact_[i]) continue;
+    if (q_[i] >= hi_[i]) state_.dw[i] = std::max(-g_[i], 0.0);
+    else if (q_[i] <= lo_[i]) state_.dw[i] = std::min(-g_[i], 0.0);
+  }
+  state_.shift = lambda_;
+}
+
+void BoxConstrainedCg::select_working_set() {
+  n_work_ = 0;
+  double g_sum = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    work_[i] = contact_[i] && ((q_[i] < hi_[i] && q_[i] > lo_[i]) || (q_[i] >= hi_[i] && g_[i] > 0.0) ||
+                               (q_[i] <= lo_[i] && g_[i] < 0.0));
+    if (work_[i]) g_sum += g_[i], ++n_work_;
+    restart_ = restart_ || work_[i] != work_old_[i];  // a new set restarts CG
+  }
+  work_old_ = work_;
+  const double g_mean = g_sum / n_work_;
+  for (int i = 0; i < n_; ++i) g_[i] = work_[i] ? g_[i] - g_mean : 0.0;
+}
+
+void BoxConstrainedCg::conjugate_direction() {
+  if (preconditioned_) {
+    kernel_.fft().apply_spectrum(kernel_.inverse_spectrum(), g_, z_);
+    double z_sum = 0.0;
+    for (int i = 0; i < n_; ++i)
+      if (work_[i]) z_sum += z_[i];
+    for (int i = 0; i < n_; ++i) z_[i] = work_[i] ? z_[i] - z_sum / n_work_ : 0.0;
+  } else {
+    z_ = g_;
+  }
+  double rz = 0.0;
+  for (int i = 0; i < n_; ++i)
+    if (work_[i]) rz += g_[i] * z_[i];
+  const double beta = restart_ ? 0.0 : rz / rz_old_;
+  for (int i = 0; i < n_; ++i) t_[i] = work_[i] ? z_[i] + beta * t_[i] : 0.0;
+  rz_old_ = rz;
+}
+
+double BoxConstrainedCg::step_length() {
+  kernel_.apply(t_, v_);
+  double num = 0.0, den = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (work_[i]) {
+      num += g_[i] * t_[i];
+      den += v_[i] * t_[i];  // Σ t = 0 on the working set: no mean of v to remove
+    }
+  }
+  return den > 0.0 ? num / den : std::numeric_limits<double>::quiet_NaN();
+}
+
+void BoxConstrainedCg::step(double tau) {
+  double fixed = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    y_[i] = work_[i] ? q_[i] - tau * t_[i] : q_[i];
+    if (contact_[i] && !work_[i]) fixed += q_[i];
+  }
+  const bool clamped = project(y_, lo_, hi_, work_, target_ - fixed, q_);
+  if (clamped) {
+    kernel_.apply(q_, u_);
+    u_exact_ = true;
+  } else {
+    for (int i = 0; i < n_; ++i) u_[i] -= tau * v_[i];
+    u_exact_ = false;
+  }
+  restart_ = clamped;  // a cell that hit a bound restarts CG
+}
+
+}  // namespace
+
 SolveSummary IncrementalSlipSolver::iterate(std::span<const double> lo, std::span<const double> hi,
                                             const SlipIncrement& inc, std::span<const double> u_prev,
                                             IncrementState& state, bool use_preconditioner) const {
   const auto t_start = std::chrono::steady_clock::now();
-  const Grid& grid = kernel_.grid();
-  const int n = grid.n;
-  const double h = grid.h();
   SolveSummary summary;
   auto finish = [&](Termination t) {
     summary.termination = t;
@@ -136,149 +370,30 @@ SolveSummary IncrementalSlipSolver::iterate(std::span<const double> lo, std::spa
     return summary;
   };
 
-  std::vector<char> contact(n), work(n, 0), work_old(n, 0);
-  int first = n, last = -1;
-  double capacity = 0.0;
-  for (int i = 0; i < n; ++i) {
-    contact[i] = hi[i] > 0.0;
-    if (contact[i]) first = std::min(first, i), last = i, capacity += h * hi[i];
-  }
-  state.dw.assign(n, 0.0);
-  if (last < 0) return finish(Termination::no_admissible_cell);
-  if (std::abs(inc.Q) > capacity) return finish(Termination::no_admissible_cell);  // beyond f P: no feasible q
-
-  const double d_eps = inc.bulk_strain - inc.bulk_strain_prev;
-  const double half_span = 0.5 * (grid.x(last) - grid.x(first) + h);
-  double d = kernel_.A() * std::abs(inc.Q - inc.Q_prev) + std::abs(d_eps) * half_span;
-  if (!(d > 0.0)) d = kernel_.A() * capacity;  // nothing changes: measure against the contact's own scale
-  const double target = inc.Q / h;
-
-  auto& q = state.q;
-  auto& u = state.u;
-  // A feasible start: the previous traction shifted uniformly (and clamped) to the new load.
-  {
-    const std::vector<double> y = q;
-    if (project(y, lo, hi, contact, target, q)) kernel_.apply(q, u);
-  }
-  bool u_exact = true;
-
-  const bool preconditioned = use_preconditioner && preconditioned_;
-  constexpr int kStallIterations = 200;  // a preconditioned run that has not halved its residual for this long
+  BoxConstrainedCg cg(kernel_, lo, hi, inc, u_prev, state, use_preconditioner && preconditioned_);
+  if (!cg.feasible()) return finish(Termination::no_admissible_cell);  // no cell, or beyond f P: no feasible q
+  cg.start();
   double best_residual = std::numeric_limits<double>::infinity();
   int best_iteration = 0;
-  std::vector<double> r(n, 0.0), g(n, 0.0), t(n, 0.0), v(n), z(n), y(n);
-  double rz_old = 1.0, lambda = 0.0;
-  bool restart = true;
-
   for (int it = 0;; ++it) {
+    // The stopping test; a preconditioned run that stalls stops too, and solve_bounded() goes on without it.
     summary.iterations = it;
-    for (bool evaluated = false; !evaluated;) {
-      // r = K (q − q_prev) + Δε x; λ its mean over the free cells (the multiplier of the load).
-      double r_free = 0.0, r_upper = -std::numeric_limits<double>::infinity(), r_lower = -r_upper;
-      int n_free = 0;
-      for (int i = 0; i < n; ++i) {
-        if (!contact[i]) continue;
-        r[i] = u[i] - u_prev[i] + d_eps * grid.x(i);
-        if (q[i] >= hi[i]) {
-          r_upper = std::max(r_upper, r[i]);
-        } else if (q[i] <= lo[i]) {
-          r_lower = std::min(r_lower, r[i]);
-        } else {
-          r_free += r[i];
-          ++n_free;
-        }
-      }
-      if (n_free > 0) {
-        lambda = r_free / n_free;
-      } else {  // every cell at a bound: any λ in [max over q = +fp, min over q = −fp] satisfies the KKT conditions
-        lambda = std::isfinite(r_upper) && std::isfinite(r_lower) ? 0.5 * (r_upper + r_lower)
-                 : std::isfinite(r_upper)                         ? r_upper
-                                                                  : r_lower;
-      }
-      double violation = 0.0;
-      for (int i = 0; i < n; ++i) {
-        if (!contact[i]) continue;
-        g[i] = r[i] - lambda;
-        const double vi = q[i] >= hi[i] ? std::max(g[i], 0.0) : q[i] <= lo[i] ? std::max(-g[i], 0.0) : std::abs(g[i]);
-        violation = std::max(violation, vi);
-      }
-      summary.residual = violation / d;
-      evaluated = u_exact || !(summary.residual <= options_.tolerance || it >= options_.max_iterations);
-      if (!evaluated) {
-        kernel_.apply(q, u);
-        u_exact = true;
-      }
-    }
+    summary.residual = cg.residual(options_.tolerance, it >= options_.max_iterations);
     if (!std::isfinite(summary.residual)) return finish(Termination::non_finite);
     if (summary.residual <= options_.tolerance) {
-      // Δw = −Δs on the cells at a bound; the cells that stick do not slip, nor does a bound cell whose residual
-      // points inward by less than the tolerance (it is taken as sticking, so that q Δw ≥ 0 holds exactly).
-      for (int i = 0; i < n; ++i) {
-        if (!contact[i]) continue;
-        if (q[i] >= hi[i]) state.dw[i] = std::max(-g[i], 0.0);
-        else if (q[i] <= lo[i]) state.dw[i] = std::min(-g[i], 0.0);
-      }
-      state.shift = lambda;
+      cg.record_slip();
       return finish(Termination::converged);
     }
     if (it >= options_.max_iterations) return finish(Termination::max_iterations);
     if (summary.residual < 0.5 * best_residual) best_residual = summary.residual, best_iteration = it;
-    if (preconditioned && it - best_iteration > kStallIterations) return finish(Termination::max_iterations);
+    if (cg.preconditioned() && it - best_iteration > kStallIterations) return finish(Termination::max_iterations);
 
-    // The working set: the free cells and the bound cells the residual pulls inward; a new set restarts CG.
-    int n_work = 0;
-    double g_sum = 0.0;
-    for (int i = 0; i < n; ++i) {
-      work[i] = contact[i] && ((q[i] < hi[i] && q[i] > lo[i]) || (q[i] >= hi[i] && g[i] > 0.0) ||
-                               (q[i] <= lo[i] && g[i] < 0.0));
-      if (work[i]) g_sum += g[i], ++n_work;
-      restart = restart || work[i] != work_old[i];
-    }
-    work_old = work;
-    // The gradient on the load-neutral subspace of the working set, and its preconditioned form.
-    const double g_mean = g_sum / n_work;
-    for (int i = 0; i < n; ++i) g[i] = work[i] ? g[i] - g_mean : 0.0;
-    if (preconditioned) {
-      kernel_.fft().apply_spectrum(kernel_.inverse_spectrum(), g, z);
-      double z_sum = 0.0;
-      for (int i = 0; i < n; ++i)
-        if (work[i]) z_sum += z[i];
-      for (int i = 0; i < n; ++i) z[i] = work[i] ? z[i] - z_sum / n_work : 0.0;
-    } else {
-      z = g;
-    }
-    double rz = 0.0;
-    for (int i = 0; i < n; ++i)
-      if (work[i]) rz += g[i] * z[i];
-    const double beta = restart ? 0.0 : rz / rz_old;
-    for (int i = 0; i < n; ++i) t[i] = work[i] ? z[i] + beta * t[i] : 0.0;
-    rz_old = rz;
-    kernel_.apply(t, v);
-    double num = 0.0, den = 0.0;
-    for (int i = 0; i < n; ++i) {
-      if (work[i]) {
-        num += g[i] * t[i];
-        den += v[i] * t[i];  // Σ t = 0 on the working set: no mean of v to remove
-      }
-    }
-    const double tau = num / den;
-    if (!std::isfinite(tau) || !(den > 0.0)) return finish(Termination::non_finite);
-
-    // Step on the working set, then project back onto the box and the load over it.
-    double fixed = 0.0;
-    for (int i = 0; i < n; ++i) {
-      y[i] = work[i] ? q[i] - tau * t[i] : q[i];
-      if (contact[i] && !work[i]) fixed += q[i];
-    }
-    const bool clamped = project(y, lo, hi, work, target - fixed, q);
-    if (clamped) {
-      kernel_.apply(q, u);
-      u_exact = true;
-    } else {
-      for (int i = 0; i < n; ++i) u[i] -= tau * v[i];
-      u_exact = false;
-    }
-    restart = clamped;
+    // One iteration: a CG step on the working set, then the projection onto the box and the load over it.
+    cg.select_working_set();
+    cg.conjugate_direction();
+    const double tau = cg.step_length();
+    if (!std::isfinite(tau)) return finish(Termination::non_finite);
+    cg.step(tau);
   }
 }
 
@@ -329,13 +444,175 @@ void close_cycle(const Grid& grid, std::span<const double> w_max, std::span<cons
     r.stick_zone_unloaded = Interval{stick_unloaded.front().left.x, stick_unloaded.back().right.x};
 }
 
+// The run's one cycle when the load reaches |Q| ≥ f P under force control: gross slip, without fields.
+IncrementalResult gross_slip(std::string message) {
+  IncrementalResult result;
+  CycleResult r;
+  r.regime = Regime::gross_slip;
+  r.message = std::move(message);
+  result.cycles.push_back(std::move(r));
+  return result;
+}
+
+// Where an increment sits in the run, for messages: "the first loading, increment k" or "cycle c, increment k".
+std::string where(int cycle, int k) {
+  const std::string when = cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle);
+  return fmt::format("{} increment {}", when, k);
+}
+
 }  // namespace
+
+// What solve() and solve_history() share: the traction carried from increment to increment, the rigid shift λ summed
+// over the increments with the fretting loop δ = λ + D(q, p) − D(0, p) − ε x_c it gives (with a datum), the slip of
+// the cycle being marched, and the result's counts.
+class IncrementalSlipSolver::Run {
+ public:
+  IncrementalResult result() { return std::move(result_); }
+
+ protected:
+  Run(const IncrementalSlipSolver& solver, const ContactState& contact, const ReferenceDatum* datum);
+  virtual ~Run() = default;
+
+  // The loads at the end of the last increment, and δ there (needs the datum).
+  virtual LoopPoint loop_point() const = 0;
+  // δ at the end of the last increment under the pressure p and the bulk strain eps.
+  double delta(std::span<const double> p, double eps) const;
+  // An increment's solve counted into the result: increments, CG iterations and the worst residual.
+  void count(const SolveSummary& s);
+  // A cycle before its first increment: no slip yet; with a datum the first loading and the loop's first point.
+  CycleResult begin_cycle();
+  // The end of an increment within the cycle: the largest |Q|, the loop point and the slip.
+  void end_increment(CycleResult& r, double Q);
+
+  const IncrementalSlipSolver& solver_;
+  const HalfPlaneKernel& kernel_;
+  const IncrementalSlipOptions& options_;
+  const Grid& grid_;
+  const int n_;
+  const double h_;
+  const ReferenceDatum* datum_;
+  const double D0_;             // D(0, p) under the contact's pressure (m)
+  IncrementState state_;        // q and u = K q at the end of the last increment, zero before the first
+  double shift_ = 0.0;          // λ summed over the increments (m)
+  std::vector<LoopPoint> first_loading_;
+  std::vector<double> w_, w_min_, w_max_;  // the slip per cell over the cycle being marched, and its extremes (m)
+  IncrementalResult result_;
+};
+
+// solve(): under constant P the controlled quantity x (Q, or δ under displacement control) cycles 0 → +X → −X → +X
+// and the bulk strain follows it; with β ≠ 0 the pressure moves with the shear.
+class IncrementalSlipSolver::AmplitudeRun : public Run {
+ public:
+  AmplitudeRun(const IncrementalSlipSolver& solver, const ContactState& contact, const CyclicLoad& load,
+               const ReferenceDatum* datum, const NormalCoupling* coupling);
+  // The first loading, 0 → X, in a quarter of a cycle's increments.
+  void first_loading();
+  // One steady cycle, top to top, into the result.
+  void cycle(int c);
+
+ private:
+  // The search for the Q of one displacement-controlled increment.
+  struct DeltaSearch {
+    DeltaSearch(double target, double strain, double strain_prev, int in_cycle, int increment,
+                const IncrementState& from)
+        : x_t(target), eps_t(strain), eps_0(strain_prev), cycle(in_cycle), k(increment), start(from), trial(from) {}
+    double x_t, eps_t, eps_0;     // the target δ (m); the bulk strain at the increment's end and at its start
+    int cycle, k;
+    IncrementState start, trial;  // the increment's start; the solve of the last evaluation
+    SolveSummary total;           // the solves so far, summed
+    int evaluations = 0;
+    double last = 0.0;            // Q of the last evaluation (N/m)
+  };
+
+  LoopPoint loop_point() const override { return {P_, Q_prev_, delta_now()}; }
+  double strain_at(double x) const { return X_ > 0.0 ? bulk_strain_ * x / X_ : 0.0; }
+  double delta_now() const { return delta(p_, strain_at(x_prev_)); }
+  // The increment to x_t, solved and recorded.
+  SolveSummary step(double x_t, int cycle, int k);
+  // Throws ConvergenceError naming the increment if s did not converge.
+  void check(const SolveSummary& s, int cycle, int k, double Qt) const;
+  // Displacement control: the Q whose force-controlled increment gives δ(Q) = x_t, and its solves.
+  std::pair<double, SolveSummary> displacement_increment(double x_t, int cycle, int k);
+  // δ(Q) − x_t: the force-controlled increment to Q from the increment's start, warm-started from the last evaluation.
+  double delta_miss(DeltaSearch& search, double Q);
+  // Q accepted: the state holds its solve (an end of the bracket is solved again if another was evaluated since).
+  std::pair<double, SolveSummary> accept(DeltaSearch& search, double Q);
+  // Q = ±f P with δ still short of the target by −miss: the bodies slide rigidly by the rest (extra_).
+  double slide(double Q_bound, double miss);
+  // The Illinois false position on the bracket [a, b] of δ(Q) − x_t, to |δ(Q) − x_t| ≤ tol.
+  std::pair<double, SolveSummary> false_position(DeltaSearch& search, double a, double fa, double b, double fb,
+                                                 double tol);
+  // β ≠ 0: the increment by block Gauss–Seidel sweeps between the normal and the tangential problems.
+  SolveSummary coupled_increment(const SlipIncrement& inc, int cycle, int k);
+  // A sweep's normal half: p for the gap g0 − A β S q under the load P, warm-started from the last p.
+  void coupled_pressure(std::span<const double> q, const SlipIncrement& inc, int cycle, int k);
+  // A sweep's tangential half: q with the bounds ±f p and the coupling slip A β S (p − p_prev) of the pressure.
+  SolveSummary coupled_traction(const SlipIncrement& inc, std::span<const double> p_prev,
+                                std::span<const double> u_prev, IncrementState& trial);
+  // Gross slip where the bodies slid rigidly beyond the stick limit, reverse slip where some cell is held at −f p at
+  // the top of the cycle.
+  void classify(CycleResult& r, double sliding) const;
+
+  const double f_, P_, bulk_strain_;
+  const bool displacement_;
+  const double X_;              // the amplitude of x: Q (N/m) or δ (m)
+  const NormalCoupling* coupling_;
+  const bool coupled_;          // β ≠ 0
+  const int m_;
+  std::vector<double> p_;       // the pressure (Pa); it moves over the cycle only when β ≠ 0
+  std::vector<double> lo_, hi_;
+  double capacity_ = 0.0;       // f P on the grid, summed as iterate() sums it (N/m)
+  double Q_prev_ = 0.0, x_prev_ = 0.0;  // at the end of the last increment
+  double extra_ = 0.0;          // the rigid sliding of the last increment beyond the stick limit (m)
+  double compliance_;           // dδ/dQ of the last increment (m²/N): the first guess of the next one's Q
+  const CouplingKernel S_;
+  const NormalSolver normal_;
+  const double A_beta_;
+  ContactState normal_state_;
+};
+
+// solve_history(): force control through the points of a load history, the pressure that of the normal problem at
+// each increment's P.
+class IncrementalSlipSolver::HistoryRun : public Run {
+ public:
+  HistoryRun(const IncrementalSlipSolver& solver, const ContactState& contact, const CyclicLoad& load,
+             std::span<const double> g0, const ReferenceDatum* datum);
+  // The first loading, from Q = 0, ε = 0 under the contact's P to the first point, in m/4 increments.
+  void first_loading();
+  // One steady cycle through the points into the result.
+  void cycle(int c);
+
+ private:
+  struct Target {  // the loads at the end of an increment
+    double P, Q, eps;
+  };
+
+  LoopPoint loop_point() const override { return {prev_.P, prev_.Q, delta(p_now_, prev_.eps)}; }
+  // The increments' ends: the first loading's, then each segment of the history split into ⌈m Δt / T⌉ equal steps.
+  void split(const std::vector<HistoryPoint>& H);
+  // The phases: top and bottom at the largest and the smallest Q; unloaded and reloaded where Q first crosses their
+  // mean after each.
+  void find_phases();
+  // The pressure under P: one normal solve per distinct P, warm-started from the nearest P solved.
+  const std::vector<double>& pressure_at(double P);
+  // The increment to t, solved and recorded.
+  SolveSummary step(const Target& t, int cycle, int k);
+
+  const double f_;
+  const int m_;
+  const std::span<const double> g0_;
+  const NormalSolver normal_;
+  double P0_ = 0.0;             // h Σ p of the contact (N/m)
+  std::map<double, std::vector<double>> pressures_;
+  std::vector<Target> first_, cycle_targets_;
+  int j_top_ = 0, j_bottom_ = 0, j_unloaded_ = 0, j_reloaded_ = 0;
+  std::vector<double> lo_, hi_, p_now_;
+  Target prev_;                 // the loads at the end of the last increment
+};
 
 IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, const CyclicLoad& load,
                                                const ReferenceDatum* datum, const NormalCoupling* coupling) const {
-  const Grid& grid = kernel_.grid();
-  const int n = grid.n;
-  const double h = grid.h();
+  const int n = kernel_.grid().n;
   const double f = load.f, P = load.P, Q = load.Q_max;
   const bool displacement = load.delta > 0.0;
   if (!load.history.empty()) throw InputError("incremental slip: a load history is solved by solve_history()");
@@ -347,458 +624,462 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
                            fmt::format("{:.4g}", coupling->beta) + ") is not supported yet; use force control");
   if (coupled && int(coupling->g0.size()) != n)
     throw InputError("incremental slip: the coupled solve needs the initial gap on the grid");
-  IncrementalResult result;
-  if (!displacement && Q >= f * P) {
-    CycleResult r;
-    r.regime = Regime::gross_slip;
-    r.message = fmt::format("Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and under force control the "
-                            "slip is not determined",
-                            Q, f * P);
-    result.cycles.push_back(std::move(r));
-    return result;
-  }
+  if (!displacement && Q >= f * P)
+    return gross_slip(fmt::format("Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and under force "
+                                  "control the slip is not determined",
+                                  Q, f * P));
 
-  std::vector<double> p = contact.p;  // moves over the cycle only when β ≠ 0
-  std::vector<double> lo(n), hi(n);
-  double capacity = 0.0;  // f P on the grid, summed as iterate() sums it
-  for (int i = 0; i < n; ++i) {
-    hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-    lo[i] = -hi[i];
-    if (hi[i] > 0.0) capacity += h * hi[i];
-  }
-  const int m = options_.increments_per_cycle;
-  // The controlled quantity x (Q, or δ under displacement control) cycles 0 → +X → −X → +X; the bulk strain follows it.
-  const double X = displacement ? load.delta : Q;
-  auto strain_at = [&](double x) { return X > 0.0 ? load.bulk_strain * x / X : 0.0; };
-
-  IncrementState state;
-  state.q.assign(n, 0.0);
-  state.u.assign(n, 0.0);
-  double Q_prev = 0.0, x_prev = 0.0, extra = 0.0;
-  // The fretting loop: λ summed over the increments, and δ = λ + D(q, p) − D(0, p) − ε x_c at each increment's end.
-  double shift = 0.0;
-  const double D0 = datum ? datum->relative_displacement(std::vector<double>(n, 0.0), p) : 0.0;
-  auto delta_now = [&](double x) {
-    return shift + datum->relative_displacement(state.q, p) - D0 - strain_at(x) * datum->x_c();
-  };
-  std::vector<LoopPoint> first_loading;
-  if (datum) first_loading.push_back({P, 0.0, 0.0});
-  auto where = [&](int cycle, int k) {
-    const std::string when = cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle);
-    return fmt::format("{} increment {}", when, k);
-  };
-  auto check = [&](const SolveSummary& s, int cycle, int k, double Qt) {
-    if (!s.converged())
-      throw ConvergenceError(fmt::format(
-          "incremental slip: {} (Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} iterations with residual {:.3g} "
-          "above the tolerance {:.3g}",
-          where(cycle, k), Q_prev, Qt, to_string(s.termination), s.iterations, s.residual, options_.tolerance));
-  };
-  double compliance = kernel_.A();  // dδ/dQ of the last increment (m²/N): the first guess of the next one's Q
-
-  // Displacement control: the increment of force control whose Q gives δ(Q) = x_t. δ(Q) is continuous and
-  // increasing (the tangential compliance is positive), so a bracket and the Illinois false position find it; past
-  // ±f P (every cell at ±f p) the bodies slide rigidly by the rest (`extra`).
-  auto displacement_increment = [&](double x_t, int cycle, int k) {
-    const IncrementState start = state;
-    IncrementState trial = state;
-    const double eps_t = strain_at(x_t), eps_0 = strain_at(x_prev);
-    const double tol = 10.0 * options_.tolerance * std::abs(x_t - x_prev);
-    SolveSummary total;
-    int evaluations = 0;
-    double last = 0.0;
-    auto evaluate = [&](double Qe) {
-      last = Qe;
-      trial.q = state.q;  // warm start: the last evaluation (q and u = K q agree)
-      trial.u = state.u;
-      const SolveSummary s = solve_bounded(lo, hi, {Qe, Q_prev, eps_t, eps_0}, start.u, trial);
-      total.iterations += s.iterations;
-      total.seconds += s.seconds;
-      total.residual = std::max(total.residual, s.residual);
-      total.termination = s.termination;
-      check(s, cycle, k, Qe);
-      if (++evaluations > kMaxEvaluations)
-        throw ConvergenceError(fmt::format("incremental slip: {} (δ from {:.6g} to {:.6g} m): no Q found in {} "
-                                           "solves",
-                                           where(cycle, k), x_prev, x_t, kMaxEvaluations));
-      state = trial;
-      return shift + trial.shift + datum->relative_displacement(trial.q, p) - D0 - eps_t * datum->x_c() - x_t;
-    };
-    auto at_bound = [&](double Qb, double fb) {  // Q = ±f P and δ still short of x_t: rigid sliding
-      extra = -fb;
-      for (int i = 0; i < n; ++i)
-        if (hi[i] > 0.0) state.dw[i] += extra;
-      return Qb;
-    };
-    double Qt = std::clamp(Q_prev + (x_t - x_prev) / compliance, -capacity, capacity);
-    double ft = evaluate(Qt);
-    if (std::abs(ft) <= tol) return std::pair(Qt, total);
-    // Bracket: a with f < 0, b with f > 0.
-    double a = Qt, fa = ft, b = Qt, fb = ft;
-    double step = std::max(std::abs(ft) / compliance, 1e-6 * capacity);
-    while (fa > 0.0) {
-      if (a == -capacity) return std::pair(at_bound(a, fa), total);
-      b = a, fb = fa;
-      a = std::max(a - step, -capacity);
-      fa = evaluate(a);
-      step *= 2.0;
-    }
-    while (fb < 0.0) {
-      if (b == capacity) return std::pair(at_bound(b, fb), total);
-      a = b, fa = fb;
-      b = std::min(b + step, capacity);
-      fb = evaluate(b);
-      step *= 2.0;
-    }
-    auto accept = [&](double Qa) {  // state holds the last evaluation; an end accepted otherwise is solved again
-      if (Qa != last) evaluate(Qa);
-      return std::pair(Qa, total);
-    };
-    if (std::abs(fa) <= tol) return accept(a);
-    if (std::abs(fb) <= tol) return accept(b);
-    int side = 0;  // Illinois: halve the retained end's value when the same end is kept twice
-    for (;;) {
-      Qt = (a * fb - b * fa) / (fb - fa);
-      if (!(Qt > a && Qt < b)) Qt = 0.5 * (a + b);
-      ft = evaluate(Qt);
-      if (std::abs(ft) <= tol || b - a <= 1e-14 * capacity) return std::pair(Qt, total);
-      if (ft < 0.0) {
-        a = Qt, fa = ft;
-        if (side == -1) fb *= 0.5;
-        side = -1;
-      } else {
-        b = Qt, fb = ft;
-        if (side == 1) fa *= 0.5;
-        side = 1;
-      }
-    }
-  };
-
-  // β ≠ 0: one increment by block Gauss–Seidel between the normal and the tangential problems (see the header).
-  const CouplingKernel S(grid);
-  const NormalSolver normal(kernel_, options_.normal);
-  const double A_beta = coupled ? kernel_.A() * coupling->beta : 0.0;
-  ContactState normal_state;
-  normal_state.p = p;
-  auto coupled_increment = [&](const SlipIncrement& inc, int cycle, int k) {
-    const std::vector<double> p_prev = p, u_prev = state.u;
-    std::vector<double> shifted(n), coupling_u(n), u_eff(n), p_last = p, q_last = state.q;
-    IncrementState trial = state;
-    SolveSummary total;
-    double change = std::numeric_limits<double>::infinity();
-    int sweeps = 0;
-    while (change > options_.coupling_tolerance * *std::max_element(p.begin(), p.end())) {
-      if (++sweeps > options_.max_coupling_sweeps)
-        throw ConvergenceError(fmt::format(
-            "incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal and tangential solves of "
-            "dissimilar bodies (beta = {:.4g}) still change the traction by {:.3g} of the peak pressure after {} "
-            "sweeps (coupling tolerance {:.3g})",
-            where(cycle, k), inc.Q_prev, inc.Q, coupling->beta,
-            change / *std::max_element(p.begin(), p.end()), options_.max_coupling_sweeps,
-            options_.coupling_tolerance));
-      // The pressure under the current shear: gap g0 − A β S q.
-      S.apply(trial.q, coupling_u, A_beta);
-      for (int i = 0; i < n; ++i) shifted[i] = coupling->g0[i] - coupling_u[i];
-      const SolveSummary ns = normal.solve(shifted, P, normal_state);
-      if (!ns.converged())
-        throw ConvergenceError(fmt::format("incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal "
-                                           "solve stopped ({}) with residual {:.3g}",
-                                           where(cycle, k), inc.Q_prev, inc.Q, to_string(ns.termination),
-                                           ns.residual));
-      p = normal_state.p;
-      // The shear under that pressure: bounds ±f p, cells that separated drop their traction, and the pressure's
-      // coupling slip A β S (p − p_prev) enters through the previous displacement.
-      bool dropped = false;
-      for (int i = 0; i < n; ++i) {
-        hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-        lo[i] = -hi[i];
-        if (hi[i] == 0.0 && trial.q[i] != 0.0) trial.q[i] = 0.0, dropped = true;
-      }
-      if (dropped) kernel_.apply(trial.q, trial.u);
-      for (int i = 0; i < n; ++i) shifted[i] = p[i] - p_prev[i];
-      S.apply(shifted, coupling_u, A_beta);
-      for (int i = 0; i < n; ++i) u_eff[i] = u_prev[i] - coupling_u[i];
-      const SolveSummary ts = solve_bounded(lo, hi, inc, u_eff, trial);
-      total.iterations += ts.iterations;
-      total.seconds += ts.seconds;
-      total.residual = ts.residual;
-      total.termination = ts.termination;
-      if (!ts.converged()) return total;
-      change = 0.0;
-      for (int i = 0; i < n; ++i)
-        change = std::max({change, std::abs(p[i] - p_last[i]), std::abs(trial.q[i] - q_last[i])});
-      p_last = p;
-      q_last = trial.q;
-    }
-    state = std::move(trial);
-    result.n_coupling_sweeps += sweeps;
-    result.max_coupling_sweeps = std::max(result.max_coupling_sweeps, sweeps);
-    return total;
-  };
-
-  auto step = [&](double x_t, int cycle, int k) {
-    SolveSummary s;
-    double Qt = x_t;
-    extra = 0.0;
-    if (coupled) {
-      s = coupled_increment({Qt, Q_prev, strain_at(Qt), strain_at(Q_prev)}, cycle, k);
-      check(s, cycle, k, Qt);
-    } else if (displacement) {
-      const double delta_prev = delta_now(x_prev);
-      std::tie(Qt, s) = displacement_increment(x_t, cycle, k);
-      const double dQ = Qt - Q_prev;
-      if (extra == 0.0 && dQ != 0.0 && (x_t - delta_prev) / dQ > 0.0) compliance = (x_t - delta_prev) / dQ;
-    } else {
-      s = solve_increment(p, f, {Qt, Q_prev, strain_at(Qt), strain_at(Q_prev)}, state);
-      check(s, cycle, k, Qt);
-    }
-    ++result.n_increments;
-    result.n_iterations += s.iterations;
-    if (!(s.residual <= result.worst.residual) || result.n_increments == 1) result.worst = s;
-    double work = 0.0;
-    for (int i = 0; i < n; ++i) work += h * state.q[i] * state.dw[i];
-    result.increment_energy.push_back(work);
-    result.increment_Q.push_back(Qt);
-    result.increment_shift.push_back(state.shift + extra);
-    Q_prev = Qt;
-    x_prev = x_t;
-    shift += state.shift + extra;
-    return s;
-  };
-  auto loop_point = [&]() { return LoopPoint{P, Q_prev, delta_now(x_prev)}; };
-
-  // The first loading, 0 → X, in a quarter of a cycle's increments.
-  for (int k = 1; k <= m / 4; ++k) {
-    step(X * (4.0 * k / m), 0, k);
-    if (datum) first_loading.push_back(loop_point());
-  }
-
-  for (int cycle = 1; cycle <= options_.cycles; ++cycle) {
-    CycleResult r;
-    std::vector<double> w(n, 0.0), w_min(n, 0.0), w_max(n, 0.0);
-    r.slip_travelled.assign(n, 0.0);
-    r.energy_density.assign(n, 0.0);
-    if (datum) {
-      r.first_loading = first_loading;
-      r.loop.push_back(loop_point());
-    }
-    double sliding = 0.0, Q_peak = std::abs(Q_prev);
-    std::vector<double> hi_unloaded = hi;
-    for (int j = 1; j <= m; ++j) {
-      // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
-      const double xt = 2 * j <= m ? X * (1.0 - 4.0 * j / m) : X * (-1.0 + 4.0 * (j - m / 2) / m);
-      r.solves.push_back(step(xt, cycle, j));
-      sliding += std::abs(extra);
-      Q_peak = std::max(Q_peak, std::abs(Q_prev));
-      if (datum) {
-        r.loop.push_back(loop_point());
-        r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
-      }
-      accumulate_slip(state, w, w_min, w_max, r);
-      if (4 * j == m) r.q_unloaded = state.q, hi_unloaded = hi;
-      if (2 * j == m) {
-        r.q_bottom = state.q;
-        if (coupled) result.p_bottom = p;
-      }
-      if (4 * j == 3 * m) r.q_reloaded = state.q;
-    }
-    if (coupled) result.p_top = p;
-    r.q_top = state.q;
-    r.Q_peak = Q_peak;
-    close_cycle(grid, w_max, w_min, hi, hi_unloaded, r);
-
-    // Reverse slip: at the top some cell is held at q = −f p (the leading edge has slipped backwards).
-    int n_backward = 0;
-    double x_backward = 0.0;
-    for (int i = 0; i < n; ++i)
-      if (hi[i] > 0.0 && r.q_top[i] <= -hi[i]) x_backward = n_backward++ == 0 ? grid.x(i) : x_backward;
-    if (sliding > 0.0) {
-      // Displacement control past the stick limit: the bodies slide rigidly by sliding/2 each half cycle.
-      r.regime = Regime::gross_slip;
-      r.sliding_amplitude = 0.25 * sliding;
-      r.message = fmt::format("Q reaches f P = {:.6g} N/m and the bodies slide {:.6g} m each way beyond the stick "
-                              "limit (sliding amplitude {:.6g} m at delta = {:.6g} m)",
-                              capacity, 0.5 * sliding, r.sliding_amplitude, X);
-      r.stick_zone.reset();
-      r.stick_zones.clear();  // a cell that never slips at the window's end is no stick zone when the bodies slide
-    } else if (n_backward > 0) {
-      r.regime = Regime::reverse_slip;
-      r.message = fmt::format("at the top of the cycle {} cells from x = {:.6g} m sit at q = -f p: the leading edge "
-                              "slips backwards (reverse slip)",
-                              n_backward, x_backward);
-    }
-    result.cycles.push_back(std::move(r));
-  }
-  return result;
+  AmplitudeRun run(*this, contact, load, datum, coupling);
+  run.first_loading();
+  for (int cycle = 1; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
+  return run.result();
 }
 
 IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& contact, const CyclicLoad& load,
                                                        std::span<const double> g0, const ReferenceDatum* datum) const {
-  const Grid& grid = kernel_.grid();
-  const int n = grid.n;
-  const double h = grid.h();
-  const double f = load.f;
   const auto& H = load.history;
-  if (H.size() < 2 || int(g0.size()) != n)
+  if (H.size() < 2 || int(g0.size()) != kernel_.grid().n)
     throw InputError("incremental slip: a load history needs two points or more and the initial gap on the grid");
-  IncrementalResult result;
-  const int m = options_.increments_per_cycle;
+  // Gross slip anywhere in the history: as under force control, the slip is not determined.
+  for (const HistoryPoint& pt : H)
+    if (std::abs(pt.Q) >= load.f * pt.P)
+      return gross_slip(fmt::format("the load history reaches |Q| = {:.6g} N/m >= f P = {:.6g} N/m at t = {:.6g}: "
+                                    "the bodies slide, and under force control the slip is not determined",
+                                    std::abs(pt.Q), load.f * pt.P, pt.t));
 
-  // The increments: the first loading from (P of the contact, 0, 0) to the first point, then each segment of the
-  // history split into ⌈m Δt / T⌉ equal steps.
-  struct Target {
-    double P, Q, eps;
-  };
-  std::vector<Target> first, cycle_targets;
-  double P0 = 0.0;
-  for (double pi : contact.p) P0 += h * pi;
-  for (int k = 1; k <= m / 4; ++k) {
-    const double s = 4.0 * k / m;
-    first.push_back({P0 + s * (H[0].P - P0), s * H[0].Q, s * H[0].bulk_strain});
+  HistoryRun run(*this, contact, load, g0, datum);
+  run.first_loading();
+  for (int cycle = 1; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
+  return run.result();
+}
+
+IncrementalSlipSolver::Run::Run(const IncrementalSlipSolver& solver, const ContactState& contact,
+                                const ReferenceDatum* datum)
+    : solver_(solver),
+      kernel_(solver.kernel_),
+      options_(solver.options_),
+      grid_(kernel_.grid()),
+      n_(grid_.n),
+      h_(grid_.h()),
+      datum_(datum),
+      D0_(datum ? datum->relative_displacement(std::vector<double>(n_, 0.0), contact.p) : 0.0) {
+  state_.q.assign(n_, 0.0);
+  state_.u.assign(n_, 0.0);
+}
+
+double IncrementalSlipSolver::Run::delta(std::span<const double> p, double eps) const {
+  return shift_ + datum_->relative_displacement(state_.q, p) - D0_ - eps * datum_->x_c();
+}
+
+void IncrementalSlipSolver::Run::count(const SolveSummary& s) {
+  ++result_.n_increments;
+  result_.n_iterations += s.iterations;
+  if (!(s.residual <= result_.worst.residual) || result_.n_increments == 1) result_.worst = s;
+}
+
+CycleResult IncrementalSlipSolver::Run::begin_cycle() {
+  CycleResult r;
+  w_.assign(n_, 0.0);
+  w_min_.assign(n_, 0.0);
+  w_max_.assign(n_, 0.0);
+  r.slip_travelled.assign(n_, 0.0);
+  r.energy_density.assign(n_, 0.0);
+  if (datum_) {
+    r.first_loading = first_loading_;
+    r.loop.push_back(loop_point());
+  }
+  return r;
+}
+
+void IncrementalSlipSolver::Run::end_increment(CycleResult& r, double Q) {
+  r.Q_peak = std::max(r.Q_peak, std::abs(Q));
+  if (datum_) {
+    r.loop.push_back(loop_point());
+    r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
+  }
+  accumulate_slip(state_, w_, w_min_, w_max_, r);
+}
+
+IncrementalSlipSolver::AmplitudeRun::AmplitudeRun(const IncrementalSlipSolver& solver, const ContactState& contact,
+                                                  const CyclicLoad& load, const ReferenceDatum* datum,
+                                                  const NormalCoupling* coupling)
+    : Run(solver, contact, datum),
+      f_(load.f),
+      P_(load.P),
+      bulk_strain_(load.bulk_strain),
+      displacement_(load.delta > 0.0),
+      X_(displacement_ ? load.delta : load.Q_max),
+      coupling_(coupling),
+      coupled_(coupling && coupling->beta != 0.0),
+      m_(options_.increments_per_cycle),
+      p_(contact.p),
+      lo_(n_),
+      hi_(n_),
+      compliance_(kernel_.A()),
+      S_(grid_),
+      normal_(kernel_, options_.normal),
+      A_beta_(coupled_ ? kernel_.A() * coupling->beta : 0.0) {
+  traction_bounds(p_, f_, lo_, hi_);
+  for (int i = 0; i < n_; ++i)
+    if (hi_[i] > 0.0) capacity_ += h_ * hi_[i];
+  normal_state_.p = p_;
+}
+
+void IncrementalSlipSolver::AmplitudeRun::first_loading() {
+  if (datum_) first_loading_.push_back({P_, 0.0, 0.0});
+  for (int k = 1; k <= m_ / 4; ++k) {
+    step(X_ * (4.0 * k / m_), 0, k);
+    if (datum_) first_loading_.push_back(loop_point());
+  }
+}
+
+void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
+  CycleResult r = begin_cycle();
+  r.Q_peak = std::abs(Q_prev_);  // the cycle starts at its top
+  double sliding = 0.0;          // rigid sliding beyond the stick limit over the cycle (m)
+  std::vector<double> hi_unloaded = hi_;
+  for (int j = 1; j <= m_; ++j) {
+    // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
+    const double xt = 2 * j <= m_ ? X_ * (1.0 - 4.0 * j / m_) : X_ * (-1.0 + 4.0 * (j - m_ / 2) / m_);
+    r.solves.push_back(step(xt, c, j));
+    sliding += std::abs(extra_);
+    end_increment(r, Q_prev_);
+    if (4 * j == m_) r.q_unloaded = state_.q, hi_unloaded = hi_;
+    if (2 * j == m_) {
+      r.q_bottom = state_.q;
+      if (coupled_) result_.p_bottom = p_;
+    }
+    if (4 * j == 3 * m_) r.q_reloaded = state_.q;
+  }
+  if (coupled_) result_.p_top = p_;
+  r.q_top = state_.q;
+  close_cycle(grid_, w_max_, w_min_, hi_, hi_unloaded, r);
+  classify(r, sliding);
+  result_.cycles.push_back(std::move(r));
+}
+
+SolveSummary IncrementalSlipSolver::AmplitudeRun::step(double x_t, int cycle, int k) {
+  SolveSummary s;
+  double Qt = x_t;
+  extra_ = 0.0;
+  if (coupled_) {
+    s = coupled_increment({Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, cycle, k);
+    check(s, cycle, k, Qt);
+  } else if (displacement_) {
+    const double delta_prev = delta_now();
+    std::tie(Qt, s) = displacement_increment(x_t, cycle, k);
+    const double dQ = Qt - Q_prev_;
+    if (extra_ == 0.0 && dQ != 0.0 && (x_t - delta_prev) / dQ > 0.0) compliance_ = (x_t - delta_prev) / dQ;
+  } else {
+    s = solver_.solve_increment(p_, f_, {Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, state_);
+    check(s, cycle, k, Qt);
+  }
+  count(s);
+  double work = 0.0;
+  for (int i = 0; i < n_; ++i) work += h_ * state_.q[i] * state_.dw[i];
+  result_.increment_energy.push_back(work);
+  result_.increment_Q.push_back(Qt);
+  result_.increment_shift.push_back(state_.shift + extra_);
+  Q_prev_ = Qt;
+  x_prev_ = x_t;
+  shift_ += state_.shift + extra_;
+  return s;
+}
+
+void IncrementalSlipSolver::AmplitudeRun::check(const SolveSummary& s, int cycle, int k, double Qt) const {
+  if (!s.converged())
+    throw ConvergenceError(fmt::format(
+        "incremental slip: {} (Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} iterations with residual {:.3g} "
+        "above the tolerance {:.3g}",
+        where(cycle, k), Q_prev_, Qt, to_string(s.termination), s.iterations, s.residual, options_.tolerance));
+}
+
+// δ(Q) is continuous and increasing (the tangential compliance is positive), so a bracket grown from the secant guess
+// and the Illinois false position find the Q whose δ is x_t; past ±f P (every cell at ±f p) the bodies slide.
+std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::displacement_increment(double x_t, int cycle,
+                                                                                             int k) {
+  DeltaSearch search(x_t, strain_at(x_t), strain_at(x_prev_), cycle, k, state_);
+  const double tol = 10.0 * options_.tolerance * std::abs(x_t - x_prev_);
+  const double Qt = std::clamp(Q_prev_ + (x_t - x_prev_) / compliance_, -capacity_, capacity_);
+  const double ft = delta_miss(search, Qt);
+  if (std::abs(ft) <= tol) return {Qt, search.total};
+  // Bracket: a with δ(a) < x_t, b with δ(b) > x_t, in doubling steps from the guess up to ±f P.
+  double a = Qt, fa = ft, b = Qt, fb = ft;
+  double step = std::max(std::abs(ft) / compliance_, 1e-6 * capacity_);
+  while (fa > 0.0) {
+    if (a == -capacity_) return {slide(a, fa), search.total};
+    b = a, fb = fa;
+    a = std::max(a - step, -capacity_);
+    fa = delta_miss(search, a);
+    step *= 2.0;
+  }
+  while (fb < 0.0) {
+    if (b == capacity_) return {slide(b, fb), search.total};
+    a = b, fa = fb;
+    b = std::min(b + step, capacity_);
+    fb = delta_miss(search, b);
+    step *= 2.0;
+  }
+  if (std::abs(fa) <= tol) return accept(search, a);
+  if (std::abs(fb) <= tol) return accept(search, b);
+  return false_position(search, a, fa, b, fb, tol);
+}
+
+double IncrementalSlipSolver::AmplitudeRun::delta_miss(DeltaSearch& search, double Q) {
+  search.last = Q;
+  search.trial.q = state_.q;  // warm start: the last evaluation (q and u = K q agree)
+  search.trial.u = state_.u;
+  const SolveSummary s =
+      solver_.solve_bounded(lo_, hi_, {Q, Q_prev_, search.eps_t, search.eps_0}, search.start.u, search.trial);
+  search.total.iterations += s.iterations;
+  search.total.seconds += s.seconds;
+  search.total.residual = std::max(search.total.residual, s.residual);
+  search.total.termination = s.termination;
+  check(s, search.cycle, search.k, Q);
+  if (++search.evaluations > kMaxEvaluations)
+    throw ConvergenceError(fmt::format("incremental slip: {} (δ from {:.6g} to {:.6g} m): no Q found in {} solves",
+                                       where(search.cycle, search.k), x_prev_, search.x_t, kMaxEvaluations));
+  state_ = search.trial;
+  const IncrementState& trial = search.trial;
+  return shift_ + trial.shift + datum_->relative_displacement(trial.q, p_) - D0_ - search.eps_t * datum_->x_c() -
+         search.x_t;
+}
+
+std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::accept(DeltaSearch& search, double Q) {
+  if (Q != search.last) delta_miss(search, Q);
+  return {Q, search.total};
+}
+
+double IncrementalSlipSolver::AmplitudeRun::slide(double Q_bound, double miss) {
+  extra_ = -miss;
+  for (int i = 0; i < n_; ++i)
+    if (hi_[i] > 0.0) state_.dw[i] += extra_;
+  return Q_bound;
+}
+
+std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::false_position(DeltaSearch& search, double a,
+                                                                                     double fa, double b, double fb,
+                                                                                     double tol) {
+  int side = 0;  // Illinois: halve the retained end's value when the same end is kept twice
+  for (;;) {
+    double Qt = (a * fb - b * fa) / (fb - fa);
+    if (!(Qt > a && Qt < b)) Qt = 0.5 * (a + b);
+    const double ft = delta_miss(search, Qt);
+    if (std::abs(ft) <= tol || b - a <= 1e-14 * capacity_) return {Qt, search.total};
+    if (ft < 0.0) {
+      a = Qt, fa = ft;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = Qt, fb = ft;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+  }
+}
+
+// A sweep k: p_k from q_{k−1}, then q_k from p_k; the increment ends when a sweep changes neither traction by more
+// than coupling_tolerance · max p_k.
+SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_increment(const SlipIncrement& inc, int cycle, int k) {
+  const std::vector<double> p_prev = p_, u_prev = state_.u;
+  std::vector<double> p_last = p_, q_last = state_.q;
+  IncrementState trial = state_;
+  SolveSummary total;
+  double change = std::numeric_limits<double>::infinity();
+  int sweeps = 0;
+  while (change > options_.coupling_tolerance * *std::max_element(p_.begin(), p_.end())) {
+    if (++sweeps > options_.max_coupling_sweeps)
+      throw ConvergenceError(fmt::format(
+          "incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal and tangential solves of "
+          "dissimilar bodies (beta = {:.4g}) still change the traction by {:.3g} of the peak pressure after {} "
+          "sweeps (coupling tolerance {:.3g})",
+          where(cycle, k), inc.Q_prev, inc.Q, coupling_->beta, change / *std::max_element(p_.begin(), p_.end()),
+          options_.max_coupling_sweeps, options_.coupling_tolerance));
+    coupled_pressure(trial.q, inc, cycle, k);
+    const SolveSummary ts = coupled_traction(inc, p_prev, u_prev, trial);
+    total.iterations += ts.iterations;
+    total.seconds += ts.seconds;
+    total.residual = ts.residual;
+    total.termination = ts.termination;
+    if (!ts.converged()) return total;
+    change = 0.0;
+    for (int i = 0; i < n_; ++i)
+      change = std::max({change, std::abs(p_[i] - p_last[i]), std::abs(trial.q[i] - q_last[i])});
+    p_last = p_;
+    q_last = trial.q;
+  }
+  state_ = std::move(trial);
+  result_.n_coupling_sweeps += sweeps;
+  result_.max_coupling_sweeps = std::max(result_.max_coupling_sweeps, sweeps);
+  return total;
+}
+
+void IncrementalSlipSolver::AmplitudeRun::coupled_pressure(std::span<const double> q, const SlipIncrement& inc,
+                                                           int cycle, int k) {
+  std::vector<double> coupling_u(n_), gap(n_);
+  S_.apply(q, coupling_u, A_beta_);
+  for (int i = 0; i < n_; ++i) gap[i] = coupling_->g0[i] - coupling_u[i];
+  const SolveSummary ns = normal_.solve(gap, P_, normal_state_);
+  if (!ns.converged())
+    throw ConvergenceError(fmt::format("incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal "
+                                       "solve stopped ({}) with residual {:.3g}",
+                                       where(cycle, k), inc.Q_prev, inc.Q, to_string(ns.termination), ns.residual));
+  p_ = normal_state_.p;
+}
+
+// Cells that left the contact drop their traction, as under a load history; the pressure's coupling slip enters
+// through the previous displacement, u_prev − A β S (p − p_prev).
+SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_traction(const SlipIncrement& inc,
+                                                                   std::span<const double> p_prev,
+                                                                   std::span<const double> u_prev,
+                                                                   IncrementState& trial) {
+  traction_bounds(p_, f_, lo_, hi_);
+  drop_separated(kernel_, hi_, trial);
+  std::vector<double> dp(n_), coupling_u(n_), u_eff(n_);
+  for (int i = 0; i < n_; ++i) dp[i] = p_[i] - p_prev[i];
+  S_.apply(dp, coupling_u, A_beta_);
+  for (int i = 0; i < n_; ++i) u_eff[i] = u_prev[i] - coupling_u[i];
+  return solver_.solve_bounded(lo_, hi_, inc, u_eff, trial);
+}
+
+void IncrementalSlipSolver::AmplitudeRun::classify(CycleResult& r, double sliding) const {
+  int n_backward = 0;
+  double x_backward = 0.0;
+  for (int i = 0; i < n_; ++i)
+    if (hi_[i] > 0.0 && r.q_top[i] <= -hi_[i]) x_backward = n_backward++ == 0 ? grid_.x(i) : x_backward;
+  if (sliding > 0.0) {
+    // Displacement control past the stick limit: the bodies slide rigidly by sliding/2 each half cycle.
+    r.regime = Regime::gross_slip;
+    r.sliding_amplitude = 0.25 * sliding;
+    r.message = fmt::format("Q reaches f P = {:.6g} N/m and the bodies slide {:.6g} m each way beyond the stick "
+                            "limit (sliding amplitude {:.6g} m at delta = {:.6g} m)",
+                            capacity_, 0.5 * sliding, r.sliding_amplitude, X_);
+    r.stick_zone.reset();
+    r.stick_zones.clear();  // a cell that never slips at the window's end is no stick zone when the bodies slide
+  } else if (n_backward > 0) {
+    // At the top some cell is held at q = −f p: the leading edge has slipped backwards.
+    r.regime = Regime::reverse_slip;
+    r.message = fmt::format("at the top of the cycle {} cells from x = {:.6g} m sit at q = -f p: the leading edge "
+                            "slips backwards (reverse slip)",
+                            n_backward, x_backward);
+  }
+}
+
+IncrementalSlipSolver::HistoryRun::HistoryRun(const IncrementalSlipSolver& solver, const ContactState& contact,
+                                              const CyclicLoad& load, std::span<const double> g0,
+                                              const ReferenceDatum* datum)
+    : Run(solver, contact, datum),
+      f_(load.f),
+      m_(options_.increments_per_cycle),
+      g0_(g0),
+      normal_(kernel_),
+      lo_(n_),
+      hi_(n_),
+      p_now_(contact.p) {
+  for (double pi : contact.p) P0_ += h_ * pi;
+  pressures_[P0_] = contact.p;
+  prev_ = {P0_, 0.0, 0.0};
+  split(load.history);
+  find_phases();
+}
+
+void IncrementalSlipSolver::HistoryRun::split(const std::vector<HistoryPoint>& H) {
+  for (int k = 1; k <= m_ / 4; ++k) {
+    const double s = 4.0 * k / m_;
+    first_.push_back({P0_ + s * (H[0].P - P0_), s * H[0].Q, s * H[0].bulk_strain});
   }
   const double T = H.back().t - H.front().t;
   for (std::size_t j = 1; j < H.size(); ++j) {
-    const int steps = std::max(1, int(std::ceil(m * (H[j].t - H[j - 1].t) / T - 1e-9)));
+    const int steps = std::max(1, int(std::ceil(m_ * (H[j].t - H[j - 1].t) / T - 1e-9)));
     for (int k = 1; k <= steps; ++k) {
       const double s = double(k) / steps;
-      cycle_targets.push_back({H[j - 1].P + s * (H[j].P - H[j - 1].P), H[j - 1].Q + s * (H[j].Q - H[j - 1].Q),
-                               H[j - 1].bulk_strain + s * (H[j].bulk_strain - H[j - 1].bulk_strain)});
+      cycle_targets_.push_back({H[j - 1].P + s * (H[j].P - H[j - 1].P), H[j - 1].Q + s * (H[j].Q - H[j - 1].Q),
+                                H[j - 1].bulk_strain + s * (H[j].bulk_strain - H[j - 1].bulk_strain)});
     }
   }
+}
 
-  // The pressure at each distinct P: one normal solve each, warm-started from the nearest P solved.
-  const NormalSolver normal(kernel_);
-  std::map<double, std::vector<double>> pressures;
-  pressures[P0] = contact.p;
-  auto pressure_at = [&](double P) -> const std::vector<double>& {
-    if (auto it = pressures.find(P); it != pressures.end()) return it->second;
-    auto near = pressures.lower_bound(P);
-    if (near == pressures.end() || (near != pressures.begin() && P - std::prev(near)->first < near->first - P))
-      near = std::prev(near);
-    ContactState state;
-    state.p = near->second;
-    const SolveSummary s = normal.solve(g0, P, state);
-    if (!s.converged())
-      throw ConvergenceError(fmt::format("incremental slip: the normal solve at P = {:.6g} N/m of the load history "
-                                         "stopped ({}) with residual {:.3g}",
-                                         P, to_string(s.termination), s.residual));
-    return pressures[P] = std::move(state.p);
-  };
-  auto bounds = [&](double P, std::vector<double>& lo, std::vector<double>& hi) {
-    const std::vector<double>& p = pressure_at(P);
-    double capacity = 0.0;
-    for (int i = 0; i < n; ++i) {
-      hi[i] = p[i] > 0.0 ? f * p[i] : 0.0;
-      lo[i] = -hi[i];
-      capacity += h * hi[i];
-    }
-    return capacity;
-  };
-  // Gross slip anywhere in the history: as under force control, the slip is not determined.
-  {
-    for (const HistoryPoint& pt : H) {
-      if (std::abs(pt.Q) >= f * pt.P) {
-        CycleResult r;
-        r.regime = Regime::gross_slip;
-        r.message = fmt::format("the load history reaches |Q| = {:.6g} N/m >= f P = {:.6g} N/m at t = {:.6g}: the "
-                                "bodies slide, and under force control the slip is not determined",
-                                std::abs(pt.Q), f * pt.P, pt.t);
-        result.cycles.push_back(std::move(r));
-        return result;
-      }
-    }
+void IncrementalSlipSolver::HistoryRun::find_phases() {
+  const auto& targets = cycle_targets_;
+  for (std::size_t j = 0; j < targets.size(); ++j) {
+    if (targets[j].Q > targets[j_top_].Q) j_top_ = int(j);
+    if (targets[j].Q < targets[j_bottom_].Q) j_bottom_ = int(j);
   }
-
-  IncrementState state;
-  state.q.assign(n, 0.0);
-  state.u.assign(n, 0.0);
-  std::vector<double> lo(n), hi(n), p_now = contact.p;
-  Target prev{P0, 0.0, 0.0};
-  double shift = 0.0;
-  const double D0 = datum ? datum->relative_displacement(std::vector<double>(n, 0.0), contact.p) : 0.0;
-  auto delta_now = [&]() {
-    return shift + datum->relative_displacement(state.q, p_now) - D0 - prev.eps * datum->x_c();
-  };
-  auto step = [&](const Target& t, int cycle, int k) {
-    bounds(t.P, lo, hi);
-    p_now = pressure_at(t.P);
-    const std::vector<double> u_prev = state.u;
-    bool dropped = false;  // cells that separate drop their traction within the increment
-    for (int i = 0; i < n; ++i)
-      if (hi[i] == 0.0 && state.q[i] != 0.0) state.q[i] = 0.0, dropped = true;
-    if (dropped) kernel_.apply(state.q, state.u);
-    const SolveSummary s = solve_bounded(lo, hi, {t.Q, prev.Q, t.eps, prev.eps}, u_prev, state);
-    ++result.n_increments;
-    result.n_iterations += s.iterations;
-    if (!(s.residual <= result.worst.residual) || result.n_increments == 1) result.worst = s;
-    if (!s.converged())
-      throw ConvergenceError(fmt::format(
-          "incremental slip: {} increment {} of the load history (P {:.6g}, Q from {:.6g} to {:.6g} N/m) stopped "
-          "({}) after {} iterations with residual {:.3g} above the tolerance {:.3g}",
-          cycle == 0 ? std::string("the first loading,") : fmt::format("cycle {},", cycle), k, t.P, prev.Q, t.Q,
-          to_string(s.termination), s.iterations, s.residual, options_.tolerance));
-    prev = t;
-    shift += state.shift;
-    return s;
-  };
-
-  std::vector<LoopPoint> first_loading;
-  if (datum) first_loading.push_back({P0, 0.0, 0.0});
-  for (std::size_t k = 0; k < first.size(); ++k) {
-    step(first[k], 0, int(k) + 1);
-    if (datum) first_loading.push_back({prev.P, prev.Q, delta_now()});
-  }
-
-  // The phases: top and bottom at the largest and smallest Q; unloaded and reloaded where Q first crosses their
-  // mean after each.
-  int j_top = 0, j_bottom = 0;
-  for (std::size_t j = 0; j < cycle_targets.size(); ++j) {
-    if (cycle_targets[j].Q > cycle_targets[j_top].Q) j_top = int(j);
-    if (cycle_targets[j].Q < cycle_targets[j_bottom].Q) j_bottom = int(j);
-  }
-  const double Q_mid = 0.5 * (cycle_targets[j_top].Q + cycle_targets[j_bottom].Q);
-  const int n_targets = int(cycle_targets.size());
+  const double Q_mid = 0.5 * (targets[j_top_].Q + targets[j_bottom_].Q);
+  const int n_targets = int(targets.size());
   auto crossing = [&](int from, bool down) {
     for (int k = 1; k <= n_targets; ++k) {
       const int j = (from + k) % n_targets;
-      if (down ? cycle_targets[j].Q <= Q_mid : cycle_targets[j].Q >= Q_mid) return j;
+      if (down ? targets[j].Q <= Q_mid : targets[j].Q >= Q_mid) return j;
     }
     return from;
   };
-  const int j_unloaded = crossing(j_top, true), j_reloaded = crossing(j_bottom, false);
+  j_unloaded_ = crossing(j_top_, true);
+  j_reloaded_ = crossing(j_bottom_, false);
+}
 
-  for (int cycle = 1; cycle <= options_.cycles; ++cycle) {
-    CycleResult r;
-    std::vector<double> w(n, 0.0), w_min(n, 0.0), w_max(n, 0.0), hi_top, hi_unloaded;
-    r.slip_travelled.assign(n, 0.0);
-    r.energy_density.assign(n, 0.0);
-    if (datum) {
-      r.first_loading = first_loading;
-      r.loop.push_back({prev.P, prev.Q, delta_now()});
-    }
-    for (int j = 0; j < n_targets; ++j) {
-      r.solves.push_back(step(cycle_targets[j], cycle, j + 1));
-      r.Q_peak = std::max(r.Q_peak, std::abs(prev.Q));
-      if (datum) {
-        r.loop.push_back({prev.P, prev.Q, delta_now()});
-        r.delta_max = std::max(r.delta_max, std::abs(r.loop.back().delta));
-      }
-      accumulate_slip(state, w, w_min, w_max, r);
-      if (j == j_top) r.q_top = state.q, hi_top = hi;
-      if (j == j_bottom) r.q_bottom = state.q;
-      if (j == j_unloaded) r.q_unloaded = state.q, hi_unloaded = hi;
-      if (j == j_reloaded) r.q_reloaded = state.q;
-    }
-    close_cycle(grid, w_max, w_min, hi_top, hi_unloaded, r);
-    int n_backward = 0;
-    for (int i = 0; i < n; ++i) n_backward += hi_top[i] > 0.0 && r.q_top[i] <= -hi_top[i];
-    if (n_backward > 0) {
-      r.regime = Regime::reverse_slip;
-      r.message = fmt::format("at the top of the cycle {} cells sit at q = -f p (reverse slip)", n_backward);
-    }
-    result.cycles.push_back(std::move(r));
+const std::vector<double>& IncrementalSlipSolver::HistoryRun::pressure_at(double P) {
+  if (auto it = pressures_.find(P); it != pressures_.end()) return it->second;
+  auto near = pressures_.lower_bound(P);
+  if (near == pressures_.end() || (near != pressures_.begin() && P - std::prev(near)->first < near->first - P))
+    near = std::prev(near);
+  ContactState state;
+  state.p = near->second;
+  const SolveSummary s = normal_.solve(g0_, P, state);
+  if (!s.converged())
+    throw ConvergenceError(fmt::format("incremental slip: the normal solve at P = {:.6g} N/m of the load history "
+                                       "stopped ({}) with residual {:.3g}",
+                                       P, to_string(s.termination), s.residual));
+  return pressures_[P] = std::move(state.p);
+}
+
+void IncrementalSlipSolver::HistoryRun::first_loading() {
+  if (datum_) first_loading_.push_back({P0_, 0.0, 0.0});
+  for (std::size_t k = 0; k < first_.size(); ++k) {
+    step(first_[k], 0, int(k) + 1);
+    if (datum_) first_loading_.push_back(loop_point());
   }
-  return result;
+}
+
+void IncrementalSlipSolver::HistoryRun::cycle(int c) {
+  CycleResult r = begin_cycle();
+  std::vector<double> hi_top, hi_unloaded;
+  for (int j = 0; j < int(cycle_targets_.size()); ++j) {
+    r.solves.push_back(step(cycle_targets_[j], c, j + 1));
+    end_increment(r, prev_.Q);
+    if (j == j_top_) r.q_top = state_.q, hi_top = hi_;
+    if (j == j_bottom_) r.q_bottom = state_.q;
+    if (j == j_unloaded_) r.q_unloaded = state_.q, hi_unloaded = hi_;
+    if (j == j_reloaded_) r.q_reloaded = state_.q;
+  }
+  close_cycle(grid_, w_max_, w_min_, hi_top, hi_unloaded, r);
+  int n_backward = 0;
+  for (int i = 0; i < n_; ++i) n_backward += hi_top[i] > 0.0 && r.q_top[i] <= -hi_top[i];
+  if (n_backward > 0) {
+    r.regime = Regime::reverse_slip;
+    r.message = fmt::format("at the top of the cycle {} cells sit at q = -f p (reverse slip)", n_backward);
+  }
+  result_.cycles.push_back(std::move(r));
+}
+
+// At a new P the bounds ±f p change: cells that separate drop their traction (the drop is part of the increment's
+// Δq), and q above its new bound is clamped by the increment's projection.
+SolveSummary IncrementalSlipSolver::HistoryRun::step(const Target& t, int cycle, int k) {
+  const std::vector<double>& p = pressure_at(t.P);
+  traction_bounds(p, f_, lo_, hi_);
+  p_now_ = p;
+  const std::vector<double> u_prev = state_.u;
+  drop_separated(kernel_, hi_, state_);
+  const SolveSummary s = solver_.solve_bounded(lo_, hi_, {t.Q, prev_.Q, t.eps, prev_.eps}, u_prev, state_);
+  count(s);
+  if (!s.converged())
+    throw ConvergenceError(fmt::format(
+        "incremental slip: {} of the load history (P {:.6g}, Q from {:.6g} to {:.6g} N/m) stopped ({}) after {} "
+        "iterations with residual {:.3g} above the tolerance {:.3g}",
+        where(cycle, k), t.P, prev_.Q, t.Q, to_string(s.termination), s.iterations, s.residual, options_.tolerance));
+  prev_ = t;
+  shift_ += state_.shift;
+  return s;
 }
 
 }  // namespace fretwear

@@ -178,6 +178,10 @@ class IncrementalSlipSolver {
   const IncrementalSlipOptions& options() const { return options_; }
 
  private:
+  class Run;           // what solve() and solve_history() carry from increment to increment (incremental_slip.cpp)
+  class AmplitudeRun;  // solve(): Q, or δ, cycling 0 → +X → −X → +X under constant P
+  class HistoryRun;    // solve_history(): the points of a load history
+
   // solve_increment with the bounds given and the previous increment's K q in u_prev (state.q: the start).
   SolveSummary solve_bounded(std::span<const double> lo, std::span<const double> hi, const SlipIncrement& inc,
                              std::span<const double> u_prev, IncrementState& state) const;

@@ -53,11 +53,310 @@ NormalSolver::NormalSolver(const HalfPlaneKernel& kernel, NormalSolverOptions op
 
 namespace {
 
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// A preconditioned run that has not halved its best residual for this many iterations has stalled.
+constexpr int kStallIterations = 200;
+
 // u += c K e_j for the Toeplitz K with first column col.
 void add_column(std::span<const double> col, int j, double c, std::span<double> u) {
   const int n = int(u.size());
   for (int i = 0; i < j; ++i) u[i] += c * col[j - i];
   for (int i = j; i < n; ++i) u[i] += c * col[i - j];
+}
+
+// One run of the header's constrained CG (Polonsky and Keer 1999) on the operator K + diag(shift): the pressure p
+// (state.p) with its displacement u = (K + diag(shift)) p carried from iterate to iterate, the gap g = g0 + u − δ
+// (state.gap, δ its mean over the contact set) and the conjugate direction t on the working set.
+class ConstrainedCg {
+ public:
+  ConstrainedCg(const HalfPlaneKernel& kernel, const NormalSolverOptions& options, std::span<const double> g0,
+                double P, ContactState& state, std::span<const double> shift, bool preconditioned);
+
+  bool preconditioned() const { return preconditioned_; }
+  // Some cell has pad material above it (a finite g0).
+  bool has_admissible_cell() const { return n_admissible_ > 0; }
+  // p on the load P: the caller's p where it carries load, else the cold start; u = (K + diag(shift)) p.
+  void start();
+  // r of the stopping criterion, on an exact u whenever r could stop the run (`last`: the iteration limit is reached).
+  double residual(bool last);
+  // The working set: the contact set, enlarged by the overlapping cells when the proportioning test admits them.
+  void select_working_set();
+  // t = z + β t on the working set, z = g or its preconditioned form; β = 0 after a restart or an enlarged set.
+  void conjugate_direction();
+  // τ = g·t / t·(K + diag(shift)) t on the load-balanced subspace, with v = (K + diag(shift)) t.
+  double step_length();
+  // p ← max(p − τ t, 0) on the working set, overlapping cells re-entered at −τ g, scaled to the load; u follows.
+  // False when no load is left to scale.
+  bool step(double tau);
+
+ private:
+  // y = (K + diag(shift)) x
+  void apply(std::span<const double> x, std::span<double> y) const;
+  // g = g0 + u − δ with δ the mean over the contact set, and r = max(h Σ p |g| / (P g_max), max_{p = 0} (−g) / g_max);
+  // also Σ g² over the contact set (G) and over the overlapping cells, for the proportioning test.
+  double gap_residual();
+  // z = M⁻¹ g made load-neutral on the working set in M's metric; returns g·z.
+  double precondition();
+  // p − τ t projected onto p ≥ 0 on the working set, overlapping cells re-entered at −τ g (c: what both change);
+  // returns the load h Σ p.
+  double project(double tau);
+  // p scaled by P / load, and u ← scale (u − τ (v − (K + diag(shift)) c / τ)) while c is sparse, else recomputed.
+  void rescale(double tau, double load);
+
+  const HalfPlaneKernel& kernel_;
+  const NormalSolverOptions& options_;
+  const std::span<const double> g0_, shift_;
+  const double P_;
+  ContactState& state_;
+  std::vector<double>& p_;
+  std::vector<double>& g_;
+  const bool shifted_, preconditioned_;
+  const int n_;
+  const double h_, k00_;
+  // A sparse correction of s columns costs s n; a product about as much as 2 log2(2n) columns (BM_ToeplitzProduct).
+  const int max_columns_;
+  std::vector<char> admissible_;  // finite g0: the pad has material above the cell
+  int n_admissible_ = 0;
+  std::vector<char> work_;        // the working set of the current iteration
+  std::vector<char> e_work_;      // the working set e_ was computed for
+  std::vector<double> u_;         // (K + diag(shift)) p, carried; exact when u_exact_
+  std::vector<double> t_, v_;     // the conjugate direction and (K + diag(shift)) t
+  std::vector<double> z_, e_;     // M⁻¹ g and M⁻¹ 1 on the working set (preconditioned only)
+  std::vector<int> changed_;      // cells where projection or re-entry changed p − τ t
+  std::vector<double> change_;    // by how much (Pa)
+  bool u_exact_ = true;
+  double rz_old_ = 1.0;           // g·z of the previous direction
+  bool conjugate_ = false;        // the next direction is conjugate to the last (no restart)
+  double g_mean_ = 0.0;           // δ: the mean gap over the contact set (m)
+  double G_ = 0.0, overlap_sq_ = 0.0;  // Σ g² over the contact set and over the overlapping cells (m²)
+  bool admit_ = false;            // the proportioning test lets the overlapping cells in
+  bool enlarge_ = false;          // ... and, preconditioned, into the working set
+};
+
+ConstrainedCg::ConstrainedCg(const HalfPlaneKernel& kernel, const NormalSolverOptions& options,
+                             std::span<const double> g0, double P, ContactState& state, std::span<const double> shift,
+                             bool preconditioned)
+    : kernel_(kernel),
+      options_(options),
+      g0_(g0),
+      shift_(shift),
+      P_(P),
+      state_(state),
+      p_(state.p),
+      g_(state.gap),
+      shifted_(!shift.empty()),
+      preconditioned_(preconditioned),
+      n_(kernel.grid().n),
+      h_(kernel.grid().h()),
+      k00_(kernel.column()[0]),
+      max_columns_(std::max(4, 2 * int(std::bit_width(unsigned(2 * n_))))),
+      admissible_(n_),
+      work_(n_),
+      u_(n_),
+      t_(n_, 0.0),
+      v_(n_),
+      z_(preconditioned ? n_ : 0),
+      e_(preconditioned ? n_ : 0) {
+  for (int i = 0; i < n_; ++i) n_admissible_ += admissible_[i] = std::isfinite(g0_[i]);
+}
+
+void ConstrainedCg::apply(std::span<const double> x, std::span<double> y) const {
+  kernel_.apply(x, y);
+  if (shifted_)
+    for (int i = 0; i < n_; ++i) y[i] += shift_[i] * x[i];
+}
+
+void ConstrainedCg::start() {
+  double load = 0.0;
+  if (int(p_.size()) == n_) {
+    for (int i = 0; i < n_; ++i) {
+      if (!admissible_[i] || !(p_[i] > 0.0)) p_[i] = 0.0;
+      load += h_ * p_[i];
+    }
+  }
+  if (!(load > 0.0)) {
+    // Cold start: uniform pressure where the gap is within A P / 2 of its minimum (the cells that may touch, as the
+    // default window reckons them: the exact contact of a wedge, 1.25 a for Hertz).
+    double g0_min = kInf;
+    for (int i = 0; i < n_; ++i)
+      if (admissible_[i]) g0_min = std::min(g0_min, g0_[i]);
+    const double reach = g0_min + 0.5 * kernel_.A() * P_;
+    p_.assign(n_, 0.0);
+    for (int i = 0; i < n_; ++i) {
+      p_[i] = admissible_[i] && (!options_.cold_start_near || g0_[i] <= reach) ? 1.0 : 0.0;
+      load += h_ * p_[i];
+    }
+  }
+  for (double& pi : p_) pi *= P_ / load;
+  g_.assign(n_, 0.0);
+  apply(p_, u_);
+}
+
+double ConstrainedCg::residual(bool last) {
+  double r = gap_residual();
+  // Stop only on an exact u: recompute K p once the carried one says converged (or at the last iteration).
+  while (!u_exact_ && (r <= options_.tolerance || last)) {
+    apply(p_, u_);
+    u_exact_ = true;
+    r = gap_residual();
+  }
+  state_.approach = g_mean_;
+  return r;
+}
+
+double ConstrainedCg::gap_residual() {
+  double g_sum = 0.0;
+  int n_active = 0;
+  for (int i = 0; i < n_; ++i) {
+    g_[i] = admissible_[i] ? u_[i] + g0_[i] : kInf;
+    if (p_[i] > 0.0) g_sum += g_[i], ++n_active;
+  }
+  g_mean_ = g_sum / n_active;
+  double g_max = 0.0, comp = 0.0, overlap = 0.0;
+  G_ = 0.0;
+  overlap_sq_ = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (!admissible_[i]) continue;
+    g_[i] -= g_mean_;
+    g_max = std::max(g_max, g_[i]);
+    if (p_[i] > 0.0) {
+      comp += p_[i] * std::abs(g_[i]);
+      G_ += g_[i] * g_[i];
+    } else {
+      overlap = std::max(overlap, -g_[i]);
+      if (g_[i] < 0.0) overlap_sq_ += g_[i] * g_[i];
+    }
+  }
+  // A complete contact loads every admissible cell and leaves no open gap to measure against; A P, the 2D
+  // approach scale, keeps the residual meaningful there (regression_complete_contact_residual.cpp).
+  g_max = std::max(g_max, kernel_.A() * P_);
+  return std::max(h_ * comp / (P_ * g_max), overlap / g_max);
+}
+
+// With the preconditioner every overlapping cell joins the working set, and then enters through a preconditioned
+// steepest-descent step on the enlarged set (re-entry at −τ g, as without it, scales with the cell and overshoots on
+// fine grids). Overlapping cells are let in only when their violation is large against the gradient on the contact
+// set (Dostál's proportioning): cells at zero gap and zero pressure, which a worn profile has by the hundred, would
+// otherwise enter and leave at every iteration and restart CG each time.
+void ConstrainedCg::select_working_set() {
+  const double gamma = options_.proportioning;
+  admit_ = overlap_sq_ > gamma * gamma * G_;
+  enlarge_ = false;
+  for (int i = 0; i < n_; ++i) {
+    const bool overlapping = p_[i] == 0.0 && g_[i] < 0.0;  // inadmissible cells have g = +∞
+    enlarge_ = enlarge_ || (preconditioned_ && overlapping && admit_);
+  }
+  for (int i = 0; i < n_; ++i) work_[i] = p_[i] > 0.0 || (enlarge_ && g_[i] < 0.0);
+}
+
+void ConstrainedCg::conjugate_direction() {
+  double rz = G_;
+  if (preconditioned_) rz = precondition();
+  const std::span<const double> dir = preconditioned_ ? std::span<const double>(z_) : std::span<const double>(g_);
+  const double beta = conjugate_ && !enlarge_ ? rz / rz_old_ : 0.0;
+  for (int i = 0; i < n_; ++i) t_[i] = work_[i] ? dir[i] + beta * t_[i] : 0.0;
+  rz_old_ = rz;
+}
+
+// With a shift, a block preconditioner: the symbol (K's circulant inverse) on the cells where K dominates, Jacobi
+// 1/(K_00 + shift_i) where the shift does. A circulant shifted by the mean shift fits neither block and stalled
+// (20 000 iterations on the Hertz wear run).
+// Keep the direction load-neutral (Σ z = 0 on the working set). Unshifted, the plain mean is subtracted (the symbol
+// preconditioner is nearly uniform there). Shifted, the Jacobi block scales cells by up to 1e6 against the symbol
+// block, and only the projection in the preconditioner's metric keeps CG consistent: z = M⁻¹ g − λ M⁻¹ 1 with
+// λ = Σ M⁻¹g / Σ M⁻¹1 (a plain mean stalled every wear-sized shift).
+double ConstrainedCg::precondition() {
+  const auto& inverse = kernel_.inverse_spectrum();
+  for (int i = 0; i < n_; ++i) z_[i] = work_[i] && !(shifted_ && shift_[i] > k00_) ? g_[i] : 0.0;
+  kernel_.fft().apply_spectrum(inverse, z_, z_);
+  if (shifted_)
+    for (int i = 0; i < n_; ++i)
+      if (work_[i] && shift_[i] > k00_) z_[i] = g_[i] / (k00_ + shift_[i]);
+  if (shifted_) {
+    // M⁻¹ 1 depends on the working set alone: recomputed only when the set changed.
+    if (work_ != e_work_) {
+      for (int i = 0; i < n_; ++i) e_[i] = work_[i] && !(shift_[i] > k00_) ? 1.0 : 0.0;
+      kernel_.fft().apply_spectrum(inverse, e_, e_);
+      for (int i = 0; i < n_; ++i)
+        if (work_[i] && shift_[i] > k00_) e_[i] = 1.0 / (k00_ + shift_[i]);
+      e_work_ = work_;
+    }
+  } else {
+    for (int i = 0; i < n_; ++i) e_[i] = work_[i] ? 1.0 : 0.0;
+  }
+  double z_sum = 0.0, e_sum = 0.0;
+  for (int i = 0; i < n_; ++i)
+    if (work_[i]) z_sum += z_[i], e_sum += e_[i];
+  const double lambda = z_sum / e_sum;
+  double rz = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    z_[i] = work_[i] ? z_[i] - lambda * e_[i] : 0.0;
+    if (work_[i]) rz += g_[i] * z_[i];
+  }
+  return rz;
+}
+
+double ConstrainedCg::step_length() {
+  apply(t_, v_);
+  double v_sum = 0.0;
+  int n_work = 0;
+  for (int i = 0; i < n_; ++i)
+    if (work_[i]) v_sum += v_[i], ++n_work;
+  const double v_mean = v_sum / n_work;
+  double num = 0.0, den = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (work_[i]) {
+      num += g_[i] * t_[i];
+      den += (v_[i] - v_mean) * t_[i];
+    }
+  }
+  return num / den;
+}
+
+bool ConstrainedCg::step(double tau) {
+  const double load = project(tau);
+  if (!(load > 0.0)) return false;
+  rescale(tau, load);
+  return true;
+}
+
+double ConstrainedCg::project(double tau) {
+  bool reentered = enlarge_;
+  changed_.clear();
+  change_.clear();
+  double load = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (!admissible_[i]) continue;
+    if (work_[i]) {
+      const double stepped = p_[i] - tau * t_[i];
+      if (stepped < 0.0) changed_.push_back(i), change_.push_back(-stepped);
+      p_[i] = std::max(stepped, 0.0);
+    } else if (g_[i] < 0.0 && admit_) {
+      p_[i] = -tau * g_[i];
+      changed_.push_back(i), change_.push_back(p_[i]);
+      reentered = true;
+    }
+    load += h_ * p_[i];
+  }
+  conjugate_ = !reentered;  // a cell let back in restarts CG
+  return load;
+}
+
+void ConstrainedCg::rescale(double tau, double load) {
+  const double scale = P_ / load;
+  for (double& pi : p_) pi *= scale;
+  if (options_.incremental_gap && int(changed_.size()) <= max_columns_ && tau != 0.0) {
+    const std::span<const double> column = kernel_.column();
+    for (std::size_t k = 0; k < changed_.size(); ++k) {
+      add_column(column, changed_[k], -change_[k] / tau, v_);
+      if (shifted_) v_[changed_[k]] -= shift_[changed_[k]] * change_[k] / tau;
+    }
+    for (int i = 0; i < n_; ++i) u_[i] = scale * (u_[i] - tau * v_[i]);
+    u_exact_ = false;
+  } else {
+    apply(p_, u_);
+    u_exact_ = true;
+  }
 }
 
 }  // namespace
@@ -82,8 +381,6 @@ SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactSt
 SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, ContactState& state,
                                    std::span<const double> shift, bool use_preconditioner) const {
   const auto t_start = std::chrono::steady_clock::now();
-  const int n = kernel_.grid().n;
-  const double h = kernel_.grid().h();
   SolveSummary summary;
   auto finish = [&](Termination t) {
     summary.termination = t;
@@ -91,215 +388,27 @@ SolveSummary NormalSolver::iterate(std::span<const double> g0, double P, Contact
     return summary;
   };
 
-  std::vector<char> admissible(n);
-  int n_admissible = 0;
-  for (int i = 0; i < n; ++i) n_admissible += admissible[i] = std::isfinite(g0[i]);
-  if (n_admissible == 0) return finish(Termination::no_admissible_cell);
-
-  auto& p = state.p;
-  double load = 0.0;
-  if (int(p.size()) == n) {
-    for (int i = 0; i < n; ++i) {
-      if (!admissible[i] || !(p[i] > 0.0)) p[i] = 0.0;
-      load += h * p[i];
-    }
-  }
-  if (!(load > 0.0)) {
-    // Cold start: uniform pressure where the gap is within A P / 2 of its minimum (the cells that may touch, as the
-    // default window reckons them: the exact contact of a wedge, 1.25 a for Hertz).
-    double g0_min = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < n; ++i)
-      if (admissible[i]) g0_min = std::min(g0_min, g0[i]);
-    const double reach = g0_min + 0.5 * kernel_.A() * P;
-    p.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
-      p[i] = admissible[i] && (!options_.cold_start_near || g0[i] <= reach) ? 1.0 : 0.0;
-      load += h * p[i];
-    }
-  }
-  for (double& pi : p) pi *= P / load;
-
-  const bool shifted = !shift.empty();
-  // y = (K + diag(shift)) x
-  auto apply = [&](std::span<const double> x, std::span<double> y) {
-    kernel_.apply(x, y);
-    if (shifted)
-      for (int i = 0; i < n; ++i) y[i] += shift[i] * x[i];
-  };
-  // With a shift, a block preconditioner: the symbol (K's circulant inverse) on the cells where K dominates, Jacobi
-  // 1/(K_00 + shift_i) where the shift does. A circulant shifted by the mean shift fits neither block and stalled
-  // (20 000 iterations on the Hertz wear run).
-  const bool preconditioned = use_preconditioner && preconditioned_;
-  // A preconditioned run that has not halved its best residual for this many iterations has stalled.
-  constexpr int kStallIterations = 200;
-  double best_residual = std::numeric_limits<double>::infinity();
+  ConstrainedCg cg(kernel_, options_, g0, P, state, shift, use_preconditioner && preconditioned_);
+  if (!cg.has_admissible_cell()) return finish(Termination::no_admissible_cell);
+  cg.start();
+  double best_residual = kInf;
   int best_iteration = 0;
-  const double k00 = kernel_.column()[0];
-  const auto& inverse = kernel_.inverse_spectrum();
-  // A sparse correction of s columns costs s n; a product about as much as 2 log2(2n) columns (BM_ToeplitzProduct).
-  const int max_columns = std::max(4, 2 * int(std::bit_width(unsigned(2 * n))));
-  const std::span<const double> column = kernel_.column();
-
-  auto& g = state.gap;
-  g.assign(n, 0.0);
-  std::vector<double> u(n), t(n, 0.0), v(n), z(preconditioned ? n : 0), e(preconditioned ? n : 0);
-  std::vector<char> work(n), e_work;
-  std::vector<int> changed;  // cells where projection or re-entry changed p − τ t
-  std::vector<double> change;
-  apply(p, u);
-  bool u_exact = true;
-  double rz_old = 1.0;
-  bool conjugate = false;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-
   for (int it = 0;; ++it) {
+    // The stopping test; a preconditioned run that stalls stops too, and solve() goes on without the preconditioner.
     summary.iterations = it;
-    double g_mean = 0.0;
-    double G = 0.0, overlap_sq = 0.0;
-    for (bool evaluated = false; !evaluated;) {
-      double g_sum = 0.0;
-      int n_active = 0;
-      for (int i = 0; i < n; ++i) {
-        g[i] = admissible[i] ? u[i] + g0[i] : kInf;
-        if (p[i] > 0.0) g_sum += g[i], ++n_active;
-      }
-      g_mean = g_sum / n_active;
-      double g_max = 0.0, comp = 0.0, overlap = 0.0;
-      G = 0.0;
-      overlap_sq = 0.0;
-      for (int i = 0; i < n; ++i) {
-        if (!admissible[i]) continue;
-        g[i] -= g_mean;
-        g_max = std::max(g_max, g[i]);
-        if (p[i] > 0.0) {
-          comp += p[i] * std::abs(g[i]);
-          G += g[i] * g[i];
-        } else {
-          overlap = std::max(overlap, -g[i]);
-          if (g[i] < 0.0) overlap_sq += g[i] * g[i];
-        }
-      }
-      // A complete contact loads every admissible cell and leaves no open gap to measure against; A P, the 2D
-      // approach scale, keeps the residual meaningful there (regression_complete_contact_residual.cpp).
-      g_max = std::max(g_max, kernel_.A() * P);
-      summary.residual = std::max(h * comp / (P * g_max), overlap / g_max);
-      // Stop only on an exact u: recompute K p once the carried one says converged (or at the last iteration).
-      evaluated = u_exact || !(summary.residual <= options_.tolerance || it >= options_.max_iterations);
-      if (!evaluated) {
-        apply(p, u);
-        u_exact = true;
-      }
-    }
-    state.approach = g_mean;
+    summary.residual = cg.residual(it >= options_.max_iterations);
     if (!std::isfinite(summary.residual)) return finish(Termination::non_finite);
     if (summary.residual <= options_.tolerance) return finish(Termination::converged);
     if (it >= options_.max_iterations) return finish(Termination::max_iterations);
     if (summary.residual < 0.5 * best_residual) best_residual = summary.residual, best_iteration = it;
-    if (preconditioned && it - best_iteration > kStallIterations) return finish(Termination::max_iterations);
+    if (cg.preconditioned() && it - best_iteration > kStallIterations) return finish(Termination::max_iterations);
 
-    // The working set: the contact set; with the preconditioner also every overlapping cell, which then enters
-    // through a preconditioned steepest-descent step on the enlarged set (re-entry at −τ g, as without it, scales
-    // with the cell and overshoots on fine grids).
-    // Overlapping cells are let in only when their violation is large against the gradient on the contact set
-    // (Dostál's proportioning): cells at zero gap and zero pressure, which a worn profile has by the hundred, would
-    // otherwise enter and leave at every iteration and restart CG each time.
-    const double gamma = options_.proportioning;
-    const bool admit = overlap_sq > gamma * gamma * G;
-    bool enlarge = false;
-    for (int i = 0; i < n; ++i) {
-      const bool overlapping = p[i] == 0.0 && g[i] < 0.0;  // inadmissible cells have g = +∞
-      enlarge = enlarge || (preconditioned && overlapping && admit);
-    }
-    for (int i = 0; i < n; ++i) work[i] = p[i] > 0.0 || (enlarge && g[i] < 0.0);
-
-    // Conjugate direction on the working set: t = z + β t, z = g or its preconditioned form.
-    double rz = G;
-    if (preconditioned) {
-      for (int i = 0; i < n; ++i) z[i] = work[i] && !(shifted && shift[i] > k00) ? g[i] : 0.0;
-      kernel_.fft().apply_spectrum(inverse, z, z);
-      if (shifted)
-        for (int i = 0; i < n; ++i)
-          if (work[i] && shift[i] > k00) z[i] = g[i] / (k00 + shift[i]);
-      // Keep the direction load-neutral (Σ z = 0 on the working set). Unshifted, the plain mean is subtracted (the
-      // symbol preconditioner is nearly uniform there). Shifted, the Jacobi block scales cells by up to 1e6
-      // against the symbol block, and only the projection in the preconditioner's metric keeps CG consistent:
-      // z = M⁻¹ g − λ M⁻¹ 1 with λ = Σ M⁻¹g / Σ M⁻¹1 (a plain mean stalled every wear-sized shift).
-      if (shifted) {
-        // M⁻¹ 1 depends on the working set alone: recomputed only when the set changed.
-        if (work != e_work) {
-          for (int i = 0; i < n; ++i) e[i] = work[i] && !(shift[i] > k00) ? 1.0 : 0.0;
-          kernel_.fft().apply_spectrum(inverse, e, e);
-          for (int i = 0; i < n; ++i)
-            if (work[i] && shift[i] > k00) e[i] = 1.0 / (k00 + shift[i]);
-          e_work = work;
-        }
-      } else {
-        for (int i = 0; i < n; ++i) e[i] = work[i] ? 1.0 : 0.0;
-      }
-      double z_sum = 0.0, e_sum = 0.0;
-      for (int i = 0; i < n; ++i)
-        if (work[i]) z_sum += z[i], e_sum += e[i];
-      const double lambda = z_sum / e_sum;
-      rz = 0.0;
-      for (int i = 0; i < n; ++i) {
-        z[i] = work[i] ? z[i] - lambda * e[i] : 0.0;
-        if (work[i]) rz += g[i] * z[i];
-      }
-    }
-    const std::span<const double> dir = preconditioned ? std::span<const double>(z) : std::span<const double>(g);
-    const double beta = conjugate && !enlarge ? rz / rz_old : 0.0;
-    for (int i = 0; i < n; ++i) t[i] = work[i] ? dir[i] + beta * t[i] : 0.0;
-    rz_old = rz;
-    apply(t, v);
-    double v_sum = 0.0;
-    int n_work = 0;
-    for (int i = 0; i < n; ++i)
-      if (work[i]) v_sum += v[i], ++n_work;
-    const double v_mean = v_sum / n_work;
-    double num = 0.0, den = 0.0;
-    for (int i = 0; i < n; ++i) {
-      if (work[i]) {
-        num += g[i] * t[i];
-        den += (v[i] - v_mean) * t[i];
-      }
-    }
-    const double tau = num / den;
+    // One iteration: a CG step on the working set, then back onto p ≥ 0 and the load.
+    cg.select_working_set();
+    cg.conjugate_direction();
+    const double tau = cg.step_length();
     if (!std::isfinite(tau)) return finish(Termination::non_finite);
-
-    // Step, project onto p ≥ 0, let overlapping cells back in (then restart CG), rescale to the load.
-    bool reentered = enlarge;
-    changed.clear();
-    change.clear();
-    load = 0.0;
-    for (int i = 0; i < n; ++i) {
-      if (!admissible[i]) continue;
-      if (work[i]) {
-        const double stepped = p[i] - tau * t[i];
-        if (stepped < 0.0) changed.push_back(i), change.push_back(-stepped);
-        p[i] = std::max(stepped, 0.0);
-      } else if (g[i] < 0.0 && admit) {
-        p[i] = -tau * g[i];
-        changed.push_back(i), change.push_back(p[i]);
-        reentered = true;
-      }
-      load += h * p[i];
-    }
-    conjugate = !reentered;
-    if (!(load > 0.0)) return finish(Termination::non_finite);
-    const double scale = P / load;
-    for (double& pi : p) pi *= scale;
-    if (options_.incremental_gap && int(changed.size()) <= max_columns && tau != 0.0) {
-      // u ← scale (u − τ (v − (K + diag(shift)) c / τ))
-      for (std::size_t k = 0; k < changed.size(); ++k) {
-        add_column(column, changed[k], -change[k] / tau, v);
-        if (shifted) v[changed[k]] -= shift[changed[k]] * change[k] / tau;
-      }
-      for (int i = 0; i < n; ++i) u[i] = scale * (u[i] - tau * v[i]);
-      u_exact = false;
-    } else {
-      apply(p, u);
-      u_exact = true;
-    }
+    if (!cg.step(tau)) return finish(Termination::non_finite);
   }
 }
 

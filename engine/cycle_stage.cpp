@@ -74,6 +74,7 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   const NormalCoupling coupling{dissimilar ? pair.beta() : 0.0, model.g0};
   const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum)
                                       : solver.solve(normal.state, load, &datum, &coupling);
+  stage.ran = TangentialRoute::incremental;
   stage.route = route == TangentialRoute::incremental ? "incremental"
                 : displacement ? "incremental (auto: displacement control)"
                 : history      ? "incremental (auto: load history)"

@@ -16,7 +16,8 @@ namespace fretwear {
 // What the cycle stage computed, with the route that ran.
 struct CycleStage {
   CycleResult result;
-  std::string route;  // "analogy"
+  std::string route;  // the route that ran, and why ("incremental (auto: the analogy found reverse slip)")
+  TangentialRoute ran = TangentialRoute::analogy;  // analogy or incremental: what the wear stage runs too
   double Q_max = 0.0, f = 0.0, bulk_stress = 0.0;
   // The displacement datum (contact/reference_datum.hpp): reference points at depth reference_depth (m) below
   // reference_x (m), the centre of the contact under P alone.

@@ -36,7 +36,7 @@ void check_strain(const Scene& scene, const Model& model, const NormalResult& no
 void check_wear(const Scene& scene, const Model& model, const NormalResult& normal, std::vector<std::string>& problems,
                 Preflight* preflight) {
   const WearEffect& effect = *scene.wear;
-  const WearEstimate e = estimate_wear(scene, model, normal);
+  const WearEstimate e = estimate_wear(scene, model, solve_cycle(scene, model, normal));
   if (effect.stepper == "cycle_by_cycle") {
     if (const std::string problem = cycle_by_cycle_problem(e.stability_limit); !problem.empty()) {
       problems.push_back(problem);

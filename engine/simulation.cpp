@@ -32,7 +32,7 @@ RunResult Simulation::run(const WearControl* control) const {
   }
   if (scene_.wear) {
     const auto t2 = std::chrono::steady_clock::now();
-    result.wear = std::make_shared<WearStage>(run_wear(scene_, model, result.normal, control ? *control : WearControl{}));
+    result.wear = std::make_shared<WearStage>(run_wear(scene_, model, result.normal, *result.cycle, control ? *control : WearControl{}));
     result.timings.wear = seconds_since(t2);
   }
   if ((scene_.stress || scene_.crack) && !(result.wear && result.wear->interrupted)) {

@@ -202,18 +202,9 @@ void IncrementalContactResponse::restore(const json& j) {
   implicit_iterations = j.at("implicit_iterations").get<long>();
 }
 
-bool wear_uses_incremental(const Scene& scene) {
-  return scene.control == LoadControl::displacement ||
-         (scene.tangential && scene.tangential->route == TangentialRoute::incremental);
-}
-
-std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const NormalResult& normal) {
-  if (!wear_uses_incremental(scene)) return std::make_unique<AnalogyContactResponse>(scene, model);
-  // The datum of the cycle stage (engine/simulation.cpp, solve_cycle): the centre of the unworn contact, 10
-  // half-widths (or grid.reference_depth) below it.
-  const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
-  const double depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
-  return std::make_unique<IncrementalContactResponse>(scene, model, 0.5 * (x_left + x_right), depth);
+std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const CycleStage& cycle) {
+  if (cycle.ran != TangentialRoute::incremental) return std::make_unique<AnalogyContactResponse>(scene, model);
+  return std::make_unique<IncrementalContactResponse>(scene, model, cycle.reference_x, cycle.reference_depth);
 }
 
 }  // namespace fretwear

@@ -15,13 +15,12 @@
 #include "contact/incremental_slip.hpp"
 #include "contact/normal_solver.hpp"
 #include "contact/reference_datum.hpp"
+#include "engine/cycle_stage.hpp"
 #include "engine/scene.hpp"
+#include "engine/setup.hpp"
 #include "wear/contact_response.hpp"
 
 namespace fretwear {
-
-struct Model;
-struct NormalResult;
 
 // What run_wear needs of a contact besides wear::ContactResponse: the shear at the top of the last cycle solved
 // (records), the warm starts of its solves (checkpoints) and its counts.
@@ -130,13 +129,9 @@ class IncrementalContactResponse : public WearContact {
   CycleResult cycle_;
 };
 
-// Whether the wear stage runs the cycle by the incremental route: under displacement control, or when the scene
-// asks for that route.
-bool wear_uses_incremental(const Scene& scene);
-
-// The contact the wear stage sees: IncrementalContactResponse when wear_uses_incremental(scene), with the datum of
-// the cycle stage (the centre of the unworn contact `normal`, 10 half-widths or grid.reference_depth below it);
-// AnalogyContactResponse otherwise. Throws what their constructors throw.
-std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const NormalResult& normal);
+// The contact the wear stage sees: by the route the cycle stage ran (IncrementalContactResponse, with the cycle
+// stage's datum, or AnalogyContactResponse), so that the route, with its `auto` fallback, is decided once. Throws
+// what their constructors throw.
+std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const CycleStage& cycle);
 
 }  // namespace fretwear

@@ -34,8 +34,9 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
   wear::CycleResponse first;
   try {
     contact.respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);
-  } catch (const UnsupportedError& e) {  // reverse slip: the incremental route wears it, with no asymptote here
-    a.unavailable = std::string("the analogy route cannot give the initial stick zone: ") + e.what();
+  } catch (const UnsupportedError&) {  // reverse slip: the incremental route wears it, with no asymptote here
+    a.unavailable = "the first cycle slips backwards at the leading edge (reverse slip), where paper 002's limit, a "
+                    "complete contact over a stick zone that stays where it started, is not established: not computed";
     return a;
   }
   static_cast<WearLimit&>(a) = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, contact.stick_zones());
@@ -50,11 +51,11 @@ std::string cycle_by_cycle_problem(double stability_limit) {
                      stability_limit);
 }
 
-WearEstimate estimate_wear(const Scene& scene, const Model& model, const NormalResult& normal) {
+WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleStage& cycle) {
   const WearEffect& effect = *scene.wear;
   const wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction,
                           effect.pad_fraction};
-  std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, normal);
+  std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, cycle);
   const std::vector<double> w(model.grid.n, 0.0);
   wear::CycleResponse response;
   contact->respond(w, response);  // cold: the first cycle's solves start from nothing
@@ -259,7 +260,8 @@ void WearRun::drive_implicit(double rate_max) {
 
 }  // namespace
 
-WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const WearControl& control) {
+WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
+                   const WearControl& control) {
   const WearEffect& effect = *scene.wear;
   const wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction,
                           effect.pad_fraction};
@@ -267,8 +269,8 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.rate_coefficient = law.rate_coefficient();
   stage.asymptote = wear_asymptote(scene, model, normal);
 
-  const std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, normal);
-  stage.route = wear_uses_incremental(scene) ? "incremental" : "analogy";
+  const std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, cycle);
+  stage.route = to_string(cycle.ran);
   // The first response: the fastest wear, and the explicit stability limit.
   wear::CycleResponse first;
   contact->respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);

@@ -15,12 +15,12 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/wear_limit.hpp"
+#include "engine/cycle_stage.hpp"
+#include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
+#include "engine/setup.hpp"
 
 namespace fretwear {
-
-struct Model;
-struct NormalResult;
 
 using Interval = std::pair<double, double>;
 
@@ -103,7 +103,7 @@ struct WearEstimate {
   double responses = 0.0;             // cycle responses the run will take (at least)
   double seconds() const { return responses * seconds_per_response; }
 };
-WearEstimate estimate_wear(const Scene& scene, const Model& model, const NormalResult& normal);
+WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleStage& cycle);
 // Why the stepper "cycle_by_cycle" cannot run at this explicit stability limit (cycles): a jump of one cycle past it
 // is unstable. Empty when it can (or nothing slips: limit 0).
 std::string cycle_by_cycle_problem(double stability_limit);
@@ -111,9 +111,10 @@ std::string cycle_by_cycle_problem(double stability_limit);
 // Runs the wear of a scene with the stepper it names (effects.wear.stepper): "implicit" (the default), "explicit"
 // (Dormand–Prince capped below the stability limit; small problems) or "cycle_by_cycle" (every cycle worn, the
 // reference on short runs; throws UnsupportedError when one cycle exceeds the stability limit). The normal solution
-// and the first cycle have been computed on the same model. `control` reports progress, writes checkpoints, continues
-// from one and stops on request (then WearStage::interrupted).
-WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal,
+// and the cycle stage have been computed on the same model; the wear stage runs the cycle by the route the cycle stage
+// ran. `control` reports progress, writes checkpoints, continues from one and stops on request (then
+// WearStage::interrupted).
+WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearControl& control = {});
 
 }  // namespace fretwear

@@ -57,7 +57,8 @@ const Case& the_case() {
 }
 
 WearStage run(const std::string& stepper, double tolerance) {
-  return run_wear(hertz_wear(stepper, tolerance), the_case().model, the_case().normal);
+  const Scene s = hertz_wear(stepper, tolerance);
+  return run_wear(s, the_case().model, the_case().normal, solve_cycle(s, the_case().model, the_case().normal));
 }
 
 std::vector<WearRecord>& cbc_cache() {
@@ -133,7 +134,8 @@ void BM_long_run(benchmark::State& st) {
   const Model model = make_model(s);
   const NormalResult normal = solve_normal(s, model);
   WearStage w;
-  for (auto _ : st) w = run_wear(s, model, normal);
+  const CycleStage cycle = solve_cycle(s, model, normal);
+  for (auto _ : st) w = run_wear(s, model, normal, cycle);
   st.counters["steps"] = w.steps;
   st.counters["rejected"] = w.rejected_steps;
   st.counters["implicit_solves"] = w.implicit_solves;

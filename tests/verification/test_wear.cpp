@@ -34,7 +34,7 @@ struct Run {
 Run run(const Scene& s) {
   Model m = make_model(s);
   NormalResult n = solve_normal(s, m);
-  WearStage w = run_wear(s, m, n);
+  WearStage w = run_wear(s, m, n, solve_cycle(s, m, n));
   return {std::move(m), std::move(n), std::move(w)};
 }
 
@@ -159,7 +159,7 @@ TEST_CASE("no checkerboard: ten implicit jumps of 1 to 1000 times the explicit s
   const Scene s = hertz_wear(0.5, 1, 1024);
   const Model m = make_model(s);
   const NormalResult n = solve_normal(s, m);
-  const WearStage probe = run_wear(s, m, n);  // for the stability limit 1.5 Δx/(E* c s_max)
+  const WearStage probe = run_wear(s, m, n, solve_cycle(s, m, n));  // for the stability limit 1.5 Δx/(E* c s_max)
   REQUIRE(probe.stability_limit > 0.0);
   for (double jump : {1.0, 10.0, 100.0, 1000.0}) {
     CAPTURE(jump);

@@ -66,7 +66,7 @@ struct Run {
 Run run(const Scene& s, const WearControl& control = {}) {
   Model m = make_model(s);
   NormalResult n = solve_normal(s, m);
-  WearStage w = run_wear(s, m, n, control);
+  WearStage w = run_wear(s, m, n, solve_cycle(s, m, n), control);
   return {std::move(m), std::move(n), std::move(w)};
 }
 
@@ -299,7 +299,7 @@ TEST_CASE("wear refusal: force control in gross slip names displacement control"
   const Model m = make_model(test::hertz_wear(kP, 0.5, 1e3, 256));
   const NormalResult n = solve_normal(s, m);
   try {
-    run_wear(s, m, n);
+    run_wear(s, m, n, solve_cycle(s, m, n));
     FAIL("force control in gross slip was not refused");
   } catch (const UnsupportedError& e) {
     CHECK(std::string(e.what()).find("load.control \"displacement\"") != std::string::npos);

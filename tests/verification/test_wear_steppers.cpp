@@ -48,7 +48,8 @@ struct Case {
   NormalResult normal = solve_normal(scene, model);
 
   WearStage run(const std::string& stepper, double tolerance) const {
-    return run_wear(hertz_wear(stepper, tolerance), model, normal);
+    const Scene s = hertz_wear(stepper, tolerance);
+    return run_wear(s, model, normal, solve_cycle(s, model, normal));
   }
 };
 
@@ -180,5 +181,5 @@ TEST_CASE("cycle by cycle refuses a problem where one cycle is beyond the stabil
   // checkerboard; the implicit stepper is the one to use.
   const Case& c = the_case();
   Scene s = hertz_wear("cycle_by_cycle", 1e-3, 1e-9);
-  CHECK_THROWS_WITH_AS(run_wear(s, c.model, c.normal), doctest::Contains("stability limit"), UnsupportedError);
+  CHECK_THROWS_WITH_AS(run_wear(s, c.model, c.normal, solve_cycle(s, c.model, c.normal)), doctest::Contains("stability limit"), UnsupportedError);
 }

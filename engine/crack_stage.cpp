@@ -3,7 +3,66 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "engine/plot.hpp"
+
 namespace fretwear {
+namespace {
+
+std::string num(double v) { return csv_number(v); }
+
+std::string sif_csv(const std::vector<SifSet>& sifs) {
+  std::string s = "cycles,phase,length_m,K_I_Pa_sqrt_m,K_I_open_Pa_sqrt_m,K_II_Pa_sqrt_m,closed\n";
+  for (const SifSet& set : sifs)
+    for (const CrackSif& k : set.result.sifs)
+      s += fmt::format("{},{},{},{},{},{},{}\n", num(set.cycles), set.phase, num(k.l), num(k.K_I), num(k.K_I_open),
+                       num(k.K_II), k.closed ? 1 : 0);
+  return s;
+}
+
+// crack.gp: K_I and K_II against crack length, top (solid) and bottom (dashed) of the cycle, the initial and the
+// last state, the records between in thin lines.
+std::string crack_plot_script(const Scene& scene, const std::vector<SifSet>& sifs, double x, bool worn) {
+  std::vector<double> states;
+  for (const SifSet& set : sifs)
+    if (states.empty() || states.back() != set.cycles) states.push_back(set.cycles);
+  const std::string hi = scene.tangential ? "top" : "loaded", lo = scene.tangential ? "bottom" : "loaded";
+  std::string s = fmt::format(R"(# Stress intensity factors. Re-run with: gnuplot crack.gp
+set datafile separator ','
+set xlabel 'crack length l (µm)'
+set grid
+set key outside right top
+set title "{}: crack at x = {:.4g} mm ({}), {}" noenhanced
+)", scene.name, x * 1e3, scene.crack->at == CrackPosition::x ? "given" : to_string(scene.crack->at),
+                              scene.crack->angle_deg == 90.0
+                                  ? std::string("normal to the surface")
+                                  : fmt::format("at {:g}° to the surface, face friction {:g}", scene.crack->angle_deg,
+                                                scene.crack->face_friction));
+  for (const char* mode : {"K_I", "K_II"}) {
+    const int col = std::string(mode) == "K_I" ? 4 : 6;
+    std::string plot = "plot ";
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      const bool shown = k == 0 || k + 1 == states.size();
+      const double t = states.size() > 1 ? double(k) / double(states.size() - 1) : 0.0;
+      auto line = [&](const std::string& phase, const char* dash) {
+        return fmt::format("'sif.csv' skip 1 using ($1 == {} && strcol(2) eq '{}' ? $3*1e6 : 1/0):(${}*1e-6) with "
+                           "linespoints pt 7 ps 0.4 lw {} {} lc rgb '{}' {}, ",
+                           num(states[k]), phase, col, shown ? 2.0 : 0.7, dash, ramp(t),
+                           shown ? fmt::format("title '{}, {}'", worn ? cycles_label(states[k]) : "initial", phase)
+                                 : std::string("notitle"));
+      };
+      plot += line(hi, "");
+      if (lo != hi) plot += line(lo, "dt 2");
+    }
+    plot.resize(plot.size() - 2);
+    s += fmt::format("set ylabel '{} (MPa√m)'\n", mode);
+    s += svg_and_png(std::string("sif_") + (col == 4 ? "I" : "II"), plot + "\n");
+  }
+  return s;
+}
+
+}  // namespace
 
 std::vector<SifSet> crack_sifs(const Grid& grid, const std::vector<Phase>& phases, double x_c,
                                const CrackEffect& effect, double cycles) {
@@ -18,29 +77,66 @@ std::vector<SifSet> crack_sifs(const Grid& grid, const std::vector<Phase>& phase
   return out;
 }
 
-std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
-                                   double depth, const StressEffect& effect) {
-  std::vector<StressMap> out;
-  for (const Phase& ph : phases) {
-    const SurfaceTractions t{grid, ph.p, ph.q, ph.sigma_bulk};
-    StressMap m;
-    m.phase = ph.name;
-    for (int i = 0; i < effect.nx; ++i) m.x.push_back(x_lo + (x_hi - x_lo) * i / (effect.nx - 1));
-    // Depths from just below the surface (the surface itself is the traction) to `depth`.
-    for (int j = 0; j < effect.ny; ++j) m.y.push_back(depth * (j + 0.5) / effect.ny);
-    m.sigma.resize(m.x.size() * m.y.size());
-    for (std::size_t i = 0; i < m.x.size(); ++i) {
-      const auto column = stress_along_depth(t, m.x[i], m.y);
-      for (std::size_t j = 0; j < m.y.size(); ++j) m.sigma[j * m.x.size() + i] = column[j];
-      m.surface_sxx.push_back(stress_at(t, m.x[i], 0.0).xx);
-    }
-    const double mid = 0.5 * (x_lo + x_hi);
-    for (std::size_t i = 0; i < m.x.size(); ++i)
-      if (m.x[i] <= mid && (i == 0 || m.surface_sxx[i] > m.trailing_peak))
-        m.trailing_peak = m.surface_sxx[i], m.trailing_peak_x = m.x[i];
-    out.push_back(std::move(m));
+double crack_position(const CrackEffect& effect, const NormalResult& normal) {
+  switch (effect.at) {
+    case CrackPosition::trailing_edge: return normal.zones.front().left.x;
+    case CrackPosition::leading_edge: return normal.zones.back().right.x;
+    case CrackPosition::x: return effect.x;
   }
-  return out;
+  return effect.x;
+}
+
+std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const NormalResult& normal,
+                              const CycleStage* cycle, const WearStage* wear) {
+  const CrackEffect& c = *scene.crack;
+  const double x = crack_position(c, normal);
+  if (!wear)
+    return crack_sifs(model.grid, cycle_phases(scene, normal.state.p, cycle ? &cycle->result.q_top : nullptr), x, c,
+                      0.0);
+  std::vector<SifSet> sifs;
+  for (const WearRecord& rec : wear->records) {
+    auto sets = crack_sifs(model.grid, cycle_phases(scene, rec.p, &rec.q), x, c, rec.cycles);
+    sifs.insert(sifs.end(), sets.begin(), sets.end());
+  }
+  return sifs;
+}
+
+nlohmann::json summarise_crack(const Scene& scene, const std::vector<SifSet>& sifs, double x) {
+  using nlohmann::json;
+  const double last_cycles = sifs.back().cycles;
+  auto column = [&](const std::string& phase, auto member) {
+    json v = json::array();
+    for (const SifSet& set : sifs)
+      if (set.cycles == last_cycles && set.phase == phase)
+        for (const CrackSif& k : set.result.sifs) v.push_back(member(k));
+    return v;
+  };
+  const std::string hi = scene.tangential ? "top" : "loaded", lo = scene.tangential ? "bottom" : "loaded";
+  const CrackEffect& c = *scene.crack;
+  return {{"at", c.at == CrackPosition::x ? json(c.x) : json(to_string(c.at))},
+          {"x", x},
+          {"angle_deg", c.angle_deg},
+          {"quadrature", c.quadrature},
+          {"cycles", last_cycles},
+          {"lengths", c.lengths},
+          {"K_I_max", column(hi, [](const CrackSif& k) { return k.K_I; })},
+          {"K_I_min", column(lo, [](const CrackSif& k) { return k.K_I; })},
+          {"K_II_max", column(hi, [](const CrackSif& k) { return k.K_II; })},
+          {"K_II_min", column(lo, [](const CrackSif& k) { return k.K_II; })},
+          {"K_I_open_max", column(hi, [](const CrackSif& k) { return k.K_I_open; })},
+          {"K_I_open_min", column(lo, [](const CrackSif& k) { return k.K_I_open; })},
+          {"closed_max", column(hi, [](const CrackSif& k) { return k.closed; })},
+          {"closed_min", column(lo, [](const CrackSif& k) { return k.closed; })}};
+}
+
+void write_crack(const Scene& scene, const std::vector<SifSet>& sifs, double x, bool worn, OutputFolder& out,
+                 Written& written) {
+  out.write("sif.csv", sif_csv(sifs));
+  written.tables.push_back("sif.csv");
+  if (!scene.plots) return;
+  out.write("crack.gp", crack_plot_script(scene, sifs, x, worn));
+  if (run_gnuplot(out.path(""), "crack.gp"))
+    written.plots.insert(written.plots.end(), {"sif_I.svg", "sif_I.png", "sif_II.svg", "sif_II.png"});
 }
 
 }  // namespace fretwear

@@ -1,24 +1,21 @@
-// The stress and crack stages of a scene: stresses under the surface and the SIFs of a crack at the contact edge, at
-// the top and the bottom of the load cycle, for the initial contact and every recorded wear state.
+// The crack stage: the stress intensity factors of a crack at the contact (contact/crack_solver.hpp) at the top and
+// the bottom of the load cycle, for the initial contact and every recorded wear state.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "contact/crack_solver.hpp"
 #include "contact/grid.hpp"
-#include "contact/subsurface_stress.hpp"
+#include "engine/cycle_stage.hpp"
+#include "engine/folder.hpp"
+#include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
+#include "engine/wear_stage.hpp"
 
 namespace fretwear {
-
-// The loads at one instant: the surface tractions and the bulk stress.
-struct Phase {
-  std::string name;  // "top", "bottom"
-  std::vector<double> p, q;
-  double sigma_bulk = 0.0;
-};
 
 struct SifSet {
   std::string phase;
@@ -26,20 +23,22 @@ struct SifSet {
   CrackResult result;
 };
 
-struct StressMap {
-  std::string phase;
-  std::vector<double> x, y;     // map axes (m)
-  std::vector<Stress> sigma;    // row-major: y outer, x inner
-  std::vector<double> surface_sxx;  // σxx at y = 0 per map x (Pa)
-  double trailing_peak = 0.0, trailing_peak_x = 0.0;  // largest surface σxx on the trailing half (Pa, m)
-};
-
 // SIFs at x_c for each phase.
 std::vector<SifSet> crack_sifs(const Grid& grid, const std::vector<Phase>& phases, double x_c,
                                const CrackEffect& effect, double cycles);
 
-// Stress maps over [x_lo, x_hi] × [0, depth] for each phase.
-std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
-                                   double depth, const StressEffect& effect);
+// Where the crack is (m): an end of the contact under P alone, or the position given.
+double crack_position(const CrackEffect& effect, const NormalResult& normal);
+
+// The stage: the SIFs at crack_position() for the unworn contact, or for every wear record.
+std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const NormalResult& normal,
+                              const CycleStage* cycle, const WearStage* wear);
+
+// Its part of summary.json: "crack" (the SIFs of the last state, one per length, at the top and the bottom).
+nlohmann::json summarise_crack(const Scene& scene, const std::vector<SifSet>& sifs, double x);
+
+// sif.csv and, with plots, crack.gp with K_I and K_II against the crack length.
+void write_crack(const Scene& scene, const std::vector<SifSet>& sifs, double x, bool worn, OutputFolder& out,
+                 Written& written);
 
 }  // namespace fretwear

@@ -7,9 +7,118 @@
 
 #include "contact/incremental_slip.hpp"
 #include "contact/reference_datum.hpp"
+#include "engine/plot.hpp"
 
 namespace fretwear {
 namespace {
+
+std::string num(double v) { return csv_number(v); }
+
+std::string cycle_csv(const NormalResult& n, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  const bool coupled = !st.p_top.empty();
+  std::string s = "x_m,p_Pa,q_top_Pa,q_unloaded_Pa,q_bottom_Pa,q_reloaded_Pa,slip_range_m,slip_per_cycle_m,"
+                  "energy_density_J_m2";
+  s += coupled ? ",p_top_Pa,p_bottom_Pa\n" : "\n";
+  for (int i = 0; i < n.grid.n; ++i) {
+    s += fmt::format("{},{},{},{},{},{},{},{},{}", num(n.grid.x(i)), num(n.state.p[i]), num(c.q_top[i]),
+                     num(c.q_unloaded[i]), num(c.q_bottom[i]), num(c.q_reloaded[i]), num(c.slip_range[i]),
+                     num(c.slip_travelled[i]), num(c.energy_density[i]));
+    s += coupled ? fmt::format(",{},{}\n", num(st.p_top[i]), num(st.p_bottom[i])) : "\n";
+  }
+  return s;
+}
+
+std::string cycle_plot_script(const Scene& scene, const NormalResult& n, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  std::string head = fmt::format(R"(# The load cycle. Re-run with: gnuplot cycle.gp
+set datafile separator ','
+set xlabel 'x (mm)'
+set grid
+set key outside right top
+set xrange [{}:{}]
+)", n.grid.x_min * 1e3, n.grid.x_max * 1e3);
+  std::string marks;
+  if (c.stick_zone)
+    marks = fmt::format("set object 1 rect from {},graph 0 to {},graph 1 back fc rgb '#eeeeee' fs solid noborder\n",
+                        c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
+  const double f = st.f;
+  std::string s = head + marks;
+  s += fmt::format("set title \"{}: shear traction at the four phases (Q/fP = {:.3g}, f = {:.3g}; {})\" noenhanced\n",
+                   scene.name, st.Q_max / (f * scene.P), f, c.stick_zone ? "grey: stick zone" : "gross slip: no stick zone");
+  s += "set ylabel 'shear traction q (MPa)'\n";
+  // The Coulomb bounds ±f p: with β ≠ 0 the pressure differs between the top and the bottom of the cycle.
+  const std::string bounds =
+      st.p_top.empty()
+          ? fmt::format("'cycle.csv' skip 1 using ($1*1e3):({0}*$2*1e-6) with lines dt 3 lc rgb '#888888' title '±f p', "
+                        "'' skip 1 using ($1*1e3):(-{0}*$2*1e-6) with lines dt 3 lc rgb '#888888' notitle, ",
+                        f)
+          : fmt::format("'cycle.csv' skip 1 using ($1*1e3):({0}*$10*1e-6) with lines dt 3 lc rgb '#888888' "
+                        "title '±f p, top', '' skip 1 using ($1*1e3):(-{0}*$10*1e-6) with lines dt 3 lc rgb '#888888' "
+                        "notitle, '' skip 1 using ($1*1e3):({0}*$11*1e-6) with lines dt 4 lc rgb '#555555' "
+                        "title '±f p, bottom', '' skip 1 using ($1*1e3):(-{0}*$11*1e-6) with lines dt 4 "
+                        "lc rgb '#555555' notitle, ",
+                        f);
+  s += "plot " + bounds;
+  s += fmt::format(
+      "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+{0})', "
+      "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded ({0} = 0)', "
+      "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-{0})', "
+      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({0} = 0)'\n",
+      scene.control == LoadControl::displacement ? "δ" : "Q");  // the phases of the controlled quantity
+  const std::string traction_plot = s.substr(s.find("plot 'cycle.csv'"));
+  std::string out = s.substr(0, s.find("plot 'cycle.csv'"));
+  out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'traction.svg'\n" + traction_plot;
+  out += "set terminal pngcairo size 1000,560 font 'sans,11'\nset output 'traction.png'\nreplot\nunset output\n";
+  out += fmt::format("set title \"{}: slip per cycle (range and distance travelled)\" noenhanced\n", scene.name);
+  out += "set ylabel 'slip (µm)'\nset y2label 'frictional energy per cycle (J/m²)'\nset y2tics\nset ytics nomirror\n";
+  const std::string slip_plot =
+      "plot 'cycle.csv' skip 1 using ($1*1e3):($7*1e6) with lines lw 1.5 lc rgb '#1f77b4' title 'slip range "
+      "(peak to peak)', '' skip 1 using ($1*1e3):($8*1e6) with lines lw 1.5 dt 2 lc rgb '#1f77b4' title 'slip "
+      "travelled per cycle', '' skip 1 using ($1*1e3):9 axes x1y2 with lines lw 1.5 lc rgb '#d62728' title "
+      "'energy density'\n";
+  out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'slip.svg'\n" + slip_plot;
+  out += "set terminal pngcairo size 1000,560 font 'sans,11'\nset output 'slip.png'\nreplot\nunset output\n";
+  return out;
+}
+
+// The fretting loop: Q against δ at the end of every increment, the first loading and then the steady cycle, top to
+// top (contact/reference_datum.hpp for the datum).
+std::string loop_csv(const CycleResult& c) {
+  std::string s = "phase,P_N_m,Q_N_m,delta_m\n";
+  for (const LoopPoint& l : c.first_loading)
+    s += fmt::format("first_loading,{},{},{}\n", num(l.P), num(l.Q), num(l.delta));
+  for (const LoopPoint& l : c.loop) s += fmt::format("cycle,{},{},{}\n", num(l.P), num(l.Q), num(l.delta));
+  return s;
+}
+
+std::string loop_plot_script(const Scene& scene, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  const std::size_t n0 = c.first_loading.size();
+  return fmt::format(R"gp(# The fretting loop. Re-run with: gnuplot loop.gp
+set datafile separator ','
+set title "{0}: fretting loop, reference points {1:.4g} mm deep" noenhanced
+set label 1 "dissipated per cycle {3:.4g} J/m\nreference points at x = {2:.4g} mm" at graph 0.97, graph 0.06 right
+set label 1 noenhanced
+set xlabel 'relative tangential displacement δ of the reference points (µm)'
+set ylabel 'tangential load Q (kN/m)'
+set grid
+set key inside left top opaque box
+set xzeroaxis lt -1 lw 0.5
+set yzeroaxis lt -1 lw 0.5
+)gp",
+                     scene.name, st.reference_depth * 1e3,
+                     std::abs(st.reference_x) < 1e-9 * st.reference_depth ? 0.0 : st.reference_x * 1e3,
+                     c.dissipated_energy) +
+         svg_and_png("loop",
+                     fmt::format("plot 'loop.csv' skip 1 every ::0::{0} using ($4*1e6):($3*1e-3) with lines lw 1.5 "
+                                 "dt 2 lc rgb '#888888' title 'first loading', '' skip 1 every ::{1} using "
+                                 "($4*1e6):($3*1e-3) with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#d62728' "
+                                 "title 'steady cycle'\n",
+                                 n0 - 1, n0),
+                     900, 640);
+}
+
 
 // δ at the top of an analogy cycle: the stick zone of the steady cycle has never slipped (w = 0 there since the first
 // loading), so at its cells the rigid shift is λ = (K q_top)_i + ε x_i (incremental_slip.hpp), and δ follows from the
@@ -97,6 +206,60 @@ std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p
   std::vector<double> minus(q.size());
   for (std::size_t i = 0; i < q.size(); ++i) minus[i] = -q[i];
   return {{"top", p, q, scene.bulk_stress}, {"bottom", p, minus, -scene.bulk_stress}};
+}
+
+nlohmann::json summarise_cycle(const Scene& scene, const CycleStage& st) {
+  using nlohmann::json;
+  const CycleResult& c = st.result;
+  auto interval = [](const std::optional<Interval>& i) { return i ? json{i->first, i->second} : json(nullptr); };
+  json stick_zones = json::array();
+  for (const auto& z : c.stick_zones) stick_zones.push_back({z.first, z.second});
+  const bool slips = !c.slip_range.empty();  // gross slip has fields only under displacement control
+  json cycle = {{"route", st.route},
+                {"regime", to_string(c.regime)},
+                {"Q_max", st.Q_max},
+                {"Q_over_fP", st.Q_max / (st.f * scene.P)},
+                {"friction", st.f},
+                {"bulk_stress", st.bulk_stress},
+                {"stick_zone", interval(c.stick_zone)},
+                {"stick_zones", stick_zones},
+                {"stick_zone_unloaded", interval(c.stick_zone_unloaded)},
+                {"dissipated_energy", slips ? json(c.dissipated_energy) : json(nullptr)},
+                {"slip_max", slips ? json(c.slip_max) : json(nullptr)},
+                {"delta_max", c.delta_max > 0.0 ? json(c.delta_max) : json(nullptr)},
+                {"control", to_string(scene.control)},
+                {"reference_depth", st.reference_depth},
+                {"reference_x", st.reference_x},
+                {"corrective_solves", c.solves.size()}};
+  if (!c.message.empty()) cycle["message"] = c.message;
+  if (!st.p_top.empty()) {  // β ≠ 0: the shear moves the pressure
+    cycle["p_max_top"] = *std::max_element(st.p_top.begin(), st.p_top.end());
+    cycle["p_max_bottom"] = *std::max_element(st.p_bottom.begin(), st.p_bottom.end());
+  }
+  if (scene.control == LoadControl::displacement) {
+    cycle["delta"] = *scene.delta;
+    cycle["sliding_amplitude"] = c.sliding_amplitude;  // 0 short of gross slip
+  }
+  return cycle;
+}
+
+void write_cycle(const Scene& scene, const NormalResult& normal, const CycleStage& cycle, OutputFolder& out,
+                 Written& written) {
+  if (cycle.result.slip_range.empty()) return;  // gross slip under force control: nothing determined to write
+  out.write("cycle.csv", cycle_csv(normal, cycle));
+  written.tables.push_back("cycle.csv");
+  const bool loop = !cycle.result.loop.empty();
+  if (loop) {
+    out.write("loop.csv", loop_csv(cycle.result));
+    written.tables.push_back("loop.csv");
+  }
+  if (!scene.plots) return;
+  out.write("cycle.gp", cycle_plot_script(scene, normal, cycle));
+  if (run_gnuplot(out.path(""), "cycle.gp"))
+    written.plots.insert(written.plots.end(), {"traction.svg", "traction.png", "slip.svg", "slip.png"});
+  if (!loop) return;
+  out.write("loop.gp", loop_plot_script(scene, cycle));
+  if (run_gnuplot(out.path(""), "loop.gp")) written.plots.insert(written.plots.end(), {"loop.svg", "loop.png"});
 }
 
 }  // namespace fretwear

@@ -5,13 +5,22 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "contact/tangential_solver.hpp"
-#include "engine/crack_stage.hpp"
+#include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
 
 namespace fretwear {
+
+// The loads at one instant: the surface tractions and the bulk stress.
+struct Phase {
+  std::string name;  // "top", "bottom"
+  std::vector<double> p, q;
+  double sigma_bulk = 0.0;
+};
 
 // What the cycle stage computed, with the route that ran.
 struct CycleStage {
@@ -33,5 +42,12 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
 // The loads at the top and the bottom of the cycle (just "loaded" without one): in phase, the bottom is the top
 // reversed; q_top empty or null (gross slip) gives q = ±f p.
 std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p, const std::vector<double>* q_top);
+
+// Its part of summary.json: "cycle" (the route, the regime, the stick zones, the energy, the slip, the datum).
+nlohmann::json summarise_cycle(const Scene& scene, const CycleStage& cycle);
+
+// cycle.csv and loop.csv (when the cycle slips somewhere) and, with plots, cycle.gp (traction and slip) and loop.gp.
+void write_cycle(const Scene& scene, const NormalResult& normal, const CycleStage& cycle, OutputFolder& out,
+                 Written& written);
 
 }  // namespace fretwear

@@ -77,7 +77,8 @@ std::string ruiz_csv(const RuizProfile& r) {
 
 // fatigue.gp: the SWT map with contour lines, the critical plane at its maximum, the contact's ends; Ruiz's F1 and
 // F2 along x with the stick zone shaded.
-std::string fatigue_plot_script(const Scene& scene, const RunResult& r, const FatigueStage& f) {
+std::string fatigue_plot_script(const Scene& scene, const NormalResult& normal, const CycleStage& cycle,
+                                const FatigueStage& f) {
   const SwtMap& m = f.swt;
   const double x0 = m.x.front() * 1e3, x1 = m.x.back() * 1e3, depth = m.y.back() * 1e3;
   std::string s = fmt::format(R"(# Fatigue measures (contact/fatigue_measures.hpp). Re-run with: gnuplot fatigue.gp
@@ -96,7 +97,7 @@ set cbrange [0:*]
 set size ratio -1
 unset key
 )", depth, x0, x1);
-  for (const auto& z : r.normal.zones)
+  for (const auto& z : normal.zones)
     for (double x : {z.left.x, z.right.x})
       s += fmt::format("set arrow from {0},{1} to {0},0 nohead front dt 3 lc rgb '#ffffff'\n", x * 1e3, 0.25 * depth);
   // The critical plane at the maximum: a segment along the plane (its normal at θ from +x toward +y), drawn from the
@@ -131,7 +132,7 @@ set yrange [0:*]
 set y2range [0:*]
 )";
   s += fmt::format("set xrange [{}:{}]\n", x0, x1);
-  const CycleResult& c = r.cycle->result;
+  const CycleResult& c = cycle.result;
   if (c.stick_zone)
     s += fmt::format("set object 1 rect from {},graph 0 to {},graph 1 back fc rgb '#eeeeee' fs solid noborder\n",
                      c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
@@ -151,13 +152,13 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-std::shared_ptr<const FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const Phase& top,
-                                                const std::vector<StressMap>& maps, const CycleStage& cycle,
-                                                const WearStage* wear) {
+std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const Phase& top,
+                                        const std::vector<StressMap>& maps, const CycleStage& cycle,
+                                        const WearStage* wear) {
   const auto t0 = std::chrono::steady_clock::now();
   const StressMap *map_top = find_map(maps, "top"), *map_bottom = find_map(maps, "bottom");
-  if (!map_top || !map_bottom) return nullptr;
-  auto out = std::make_shared<FatigueStage>();
+  if (!map_top || !map_bottom) return std::nullopt;
+  auto out = std::make_optional<FatigueStage>();
   out->swt = swt_map(*map_top, *map_bottom, scene.specimen, scene.plane);
   if (cycle.result.regime != Regime::gross_slip) {
     // The slip of the state the maps show: the cycle's peak-to-peak range, or the last wear record's slip travelled
@@ -191,8 +192,10 @@ void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& f) {
   stress["fatigue_seconds"] = f.seconds;
 }
 
-void write_fatigue(const Scene& scene, const RunResult& result, const FatigueStage& f, OutputFolder& out,
-                   std::vector<std::string>& tables, std::vector<std::string>& plots) {
+void write_fatigue(const Scene& scene, const NormalResult& normal, const CycleStage& cycle, const FatigueStage& f,
+                   OutputFolder& out, Written& written) {
+  auto& tables = written.tables;
+  auto& plots = written.plots;
   out.write("fatigue.csv", fatigue_csv(f.swt));
   tables.push_back("fatigue.csv");
   if (f.ruiz) {
@@ -201,7 +204,7 @@ void write_fatigue(const Scene& scene, const RunResult& result, const FatigueSta
   }
   if (!scene.plots) return;
   out.write("swt_map.dat", swt_map_dat(f.swt));
-  out.write("fatigue.gp", fatigue_plot_script(scene, result, f));
+  out.write("fatigue.gp", fatigue_plot_script(scene, normal, cycle, f));
   if (!run_gnuplot(out.path(""), "fatigue.gp")) return;
   plots.insert(plots.end(), {"swt_map.png"});
   if (f.ruiz) plots.insert(plots.end(), {"ruiz.svg", "ruiz.png"});

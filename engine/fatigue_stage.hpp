@@ -4,7 +4,6 @@
 // the last wear record).
 #pragma once
 
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,11 +11,13 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/fatigue_measures.hpp"
-#include "engine/simulation.hpp"
+#include "engine/cycle_stage.hpp"
+#include "engine/folder.hpp"
+#include "engine/normal_stage.hpp"
+#include "engine/stress_stage.hpp"
+#include "engine/wear_stage.hpp"
 
 namespace fretwear {
-
-class OutputFolder;  // engine/folder.hpp
 
 // SWT on the stress map's points.
 struct SwtMap {
@@ -34,17 +35,16 @@ struct FatigueStage {
 
 // The measures from the stress maps just computed. maps: stress_maps' output at "top" and "bottom"; top: the loads
 // at the top of the cycle (the same state as the maps); cycle: the cycle solved; wear: the wear stage or null (its
-// last record's slip is used then). Null when the maps hold no "top" and "bottom" pair.
-std::shared_ptr<const FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const Phase& top,
-                                                const std::vector<StressMap>& maps, const CycleStage& cycle,
-                                                const WearStage* wear);
+// last record's slip is used then). None when the maps hold no "top" and "bottom" pair.
+std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const Phase& top,
+                                        const std::vector<StressMap>& maps, const CycleStage& cycle,
+                                        const WearStage* wear);
 
 // Adds the stress.swt_* and stress.ruiz_* keys to the summary's "stress" object.
 void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& fatigue);
 
-// fatigue.csv, ruiz.csv and, with plots, fatigue.gp with swt_map.svg/.png and ruiz.svg/.png; appends the files
-// written to tables and plots.
-void write_fatigue(const Scene& scene, const RunResult& result, const FatigueStage& fatigue, OutputFolder& out,
-                   std::vector<std::string>& tables, std::vector<std::string>& plots);
+// fatigue.csv, ruiz.csv and, with plots, fatigue.gp with swt_map.png and ruiz.svg/.png.
+void write_fatigue(const Scene& scene, const NormalResult& normal, const CycleStage& cycle, const FatigueStage& fatigue,
+                   OutputFolder& out, Written& written);
 
 }  // namespace fretwear

@@ -173,7 +173,8 @@ void OutputFolder::stage() const {
     int entries = 0;
     for (auto it = fs::directory_iterator(run_folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
       entries += it->path().filename() != staging_.filename();
-    if (entries == 0) std::ofstream(run_folder / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
+    if (entries == 0)
+      std::ofstream(run_folder / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
   }
   if (ec || ::access(staging_.c_str(), W_OK) != 0 || !ours(staging_)) {
     const std::string why = ec ? ec.message() : "permission denied";

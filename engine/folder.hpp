@@ -29,6 +29,11 @@ std::filesystem::path output_folder(const Scene& scene, OutputCommand command);
 std::vector<std::string> output_dir_problems(const Scene& scene, const std::filesystem::path& scene_file,
                                              OutputCommand command);
 
+// What the stages wrote into a folder, for the run's index.html: the tables (CSV) and the plots, in order.
+struct Written {
+  std::vector<std::string> tables, plots;
+};
+
 class OutputFolder {
  public:
   // dir: the target of `command`, checked by output_dir_problems(). A commit of the run's folder carries over the

@@ -7,9 +7,51 @@
 
 #include "contact/closed_form.hpp"
 #include "contact/load_size.hpp"
+#include "engine/plot.hpp"
 
 namespace fretwear {
 namespace {
+
+std::string num(double v) { return csv_number(v); }
+
+std::string contact_csv(const NormalResult& n) {
+  std::string s = n.reference ? "x_m,gap0_m,p_Pa,gap_m,p_closed_form_Pa\n" : "x_m,gap0_m,p_Pa,gap_m\n";
+  for (int i = 0; i < n.grid.n; ++i) {
+    s += fmt::format("{},{},{},{}", num(n.grid.x(i)), num(n.g0[i]), num(n.state.p[i]), num(n.state.gap[i]));
+    if (n.reference) s += "," + num(n.reference->p_cell[i]);
+    s += "\n";
+  }
+  return s;
+}
+
+std::string pressure_plot_script(const Scene& scene, const NormalResult& n, bool coupled) {
+  std::string s = R"(# Pressure under the normal load. Re-run with: gnuplot pressure.gp
+set datafile separator ','
+set datafile missing 'inf'
+set xlabel 'x (mm)'
+set ylabel 'pressure p (MPa)'
+set grid
+set key top right
+)";
+  s += fmt::format("set title \"{}: P = {:.4g} kN/m, {} cells\" noenhanced\n", scene.name, scene.P * 1e-3, n.grid.n);
+  s += fmt::format("set xrange [{}:{}]\n", n.grid.x_min * 1e3, n.grid.x_max * 1e3);
+  for (const auto& z : n.zones)
+    for (double x : {z.left.x, z.right.x})
+      s += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead dt 3 lc rgb '#888888'\n", x * 1e3);
+  std::string plot = "plot 'contact.csv' skip 1 using ($1*1e3):($3*1e-6) with steps lw 1.5 lc rgb '#1f77b4' "
+                     "title 'fretwear (cell pressure)'";
+  if (n.reference)
+    plot += fmt::format(", '' skip 1 using ($1*1e3):($5*1e-6) with lines dt 2 lw 1.5 lc rgb '#d62728' "
+                        "title 'closed form ({})'", n.reference->kind);
+  if (coupled)  // β ≠ 0: the pressure the shear leaves at the top and the bottom of the cycle
+    plot += ", 'cycle.csv' skip 1 using ($1*1e3):($10*1e-6) with steps lw 1.2 lc rgb '#d62728' title 'top of the "
+            "cycle (coupled)', '' skip 1 using ($1*1e3):($11*1e-6) with steps lw 1.2 dt 2 lc rgb '#2ca02c' "
+            "title 'bottom of the cycle (coupled)'";
+  s += "set terminal svg size 900,560 dynamic font 'sans,12'\nset output 'pressure.svg'\n" + plot + "\n";
+  s += "set terminal pngcairo size 900,560 font 'sans,11'\nset output 'pressure.png'\nreplot\nunset output\n";
+  return s;
+}
+
 
 // The closed form of an untilted cylinder, rounded punch or sharp punch, on the grid.
 std::optional<Reference> closed_form_reference(const Scene& scene, const ElasticPair& pair, const NormalResult& r) {
@@ -98,6 +140,57 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
   }
   r.reference = closed_form_reference(scene, pair, r);
   return r;
+}
+
+nlohmann::json summarise_normal(const Scene& scene, const NormalResult& n) {
+  using nlohmann::json;
+  const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
+  json zones = json::array();
+  for (const auto& z : n.zones) zones.push_back({z.left.x, z.right.x});
+  const Edge& left = n.zones.front().left;
+  const Edge& right = n.zones.back().right;
+  double load = 0.0;
+  for (double p : n.state.p) load += p * n.grid.h();
+
+  json contact = {
+      {"extent", {left.x, right.x}},
+      {"zones", zones},
+      {"edge_method", left.method == right.method ? to_string(left.method) : "mixed"},
+      {"edge_methods", {to_string(left.method), to_string(right.method)}},
+      {"p_max", n.p_max},
+      {"x_p_max", n.x_p_max},
+      {"cells_in_contact", n.cells_in_contact},
+      {"load", load},
+  };
+  if (n.load_size_half_width) contact["load_size_half_width"] = *n.load_size_half_width;
+  if (n.reference) {
+    const Reference& ref = *n.reference;
+    contact["closed_form"] = {{"kind", ref.kind},       {"half_width", ref.half_width},
+                              {"p_max", ref.p_max},     {"extent_error", ref.extent_error},
+                              {"p_max_error", ref.p_max_error}, {"rms_error", ref.rms_error}};
+  }
+  return {{"contact", contact},
+          {"materials", {{"A", pair.A()}, {"E_star", pair.E_star()}, {"alpha", pair.alpha()}, {"beta", pair.beta()}}},
+          {"grid",
+           {{"cells", n.grid.n}, {"window", {n.grid.x_min, n.grid.x_max}}, {"window_method", n.window.method},
+            {"h", n.grid.h()}}},
+          {"solver",
+           {{"normal",
+             {{"termination", to_string(n.summary.termination)},
+              {"iterations", n.summary.iterations},
+              {"residual", n.summary.residual},
+              {"seconds", n.summary.seconds},
+              {"brief", n.summary.brief()}}}}}};
+}
+
+void write_normal(const Scene& scene, const NormalResult& normal, const std::vector<double>& p_top,
+                  OutputFolder& out, Written& written) {
+  out.write("contact.csv", contact_csv(normal));
+  written.tables.push_back("contact.csv");
+  if (!scene.plots) return;
+  out.write("pressure.gp", pressure_plot_script(scene, normal, !p_top.empty()));
+  if (run_gnuplot(out.path(""), "pressure.gp"))
+    written.plots.insert(written.plots.end(), {"pressure.svg", "pressure.png"});
 }
 
 }  // namespace fretwear

@@ -6,10 +6,13 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "contact/contact_zones.hpp"
 #include "contact/grid.hpp"
 #include "contact/normal_solver.hpp"
 #include "contact/window.hpp"
+#include "engine/folder.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
 
@@ -44,5 +47,14 @@ struct NormalResult {
 // reaches the end of a given window or no cell of it can touch.
 NormalResult solve_normal(const Scene& scene, const Model& model);
 NormalResult solve_normal(const Scene& scene, int cells = 0);
+
+// Its part of summary.json: "contact" (the extent, the zones, the peak, the load balance, the closed form), "grid",
+// "materials" and "solver.normal".
+nlohmann::json summarise_normal(const Scene& scene, const NormalResult& normal);
+
+// contact.csv and, with plots, pressure.gp (with the coupled pressure at the top and the bottom of the cycle of
+// dissimilar bodies, when `p_top` and `p_bottom` are given).
+void write_normal(const Scene& scene, const NormalResult& normal, const std::vector<double>& p_top,
+                  OutputFolder& out, Written& written);
 
 }  // namespace fretwear

@@ -1,5 +1,6 @@
 #include "engine/plot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -38,6 +39,27 @@ std::string png_only(const std::string& stem, const std::string& plot, int width
 std::string csv_number(double v) {
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return fmt::format("{:.10g}", v);
+}
+
+// A colour ramp from dark blue to orange (matplotlib's plasma, up to 0.85): t in [0, 1].
+std::string ramp(double t) {
+  static const int stops[5][3] = {{13, 8, 135}, {106, 0, 168}, {177, 42, 144}, {225, 100, 98}, {244, 150, 40}};
+  t = std::clamp(t, 0.0, 1.0) * 4.0;
+  const int k = std::min(3, int(t));
+  const double u = t - k;
+  int c[3];
+  for (int j = 0; j < 3; ++j) c[j] = int(std::lround(stops[k][j] + u * (stops[k + 1][j] - stops[k][j])));
+  return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+}
+
+// A cycle count for a legend (gnuplot enhanced text): 0, 250, 3.16×10^5.
+std::string cycles_label(double c) {
+  if (c == 0.0) return "N = 0 (unworn)";
+  if (c < 1e4) return fmt::format("N = {:.0f}", c);
+  const int e = int(std::floor(std::log10(c) + 1e-12));
+  const double m = c / std::pow(10.0, e);
+  if (std::abs(m - std::round(m)) < 5e-3) return fmt::format("N = {:.0f}×10^{{{}}}", std::round(m), e);
+  return fmt::format("N = {:.3g}×10^{{{}}}", m, e);
 }
 
 }  // namespace fretwear

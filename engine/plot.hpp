@@ -15,6 +15,11 @@ std::string png_only(const std::string& stem, const std::string& plot, int width
 // Runs gnuplot on `script` inside `dir`; false (and a note on stderr) when gnuplot is missing or fails.
 bool run_gnuplot(const std::filesystem::path& dir, const std::string& script_file);
 
+// A colour along a ramp from t = 0 (first record) to 1 (last), as gnuplot's rgb '#rrggbb'.
+std::string ramp(double t);
+// A cycle count for a plot's key: "N = 1e+06" and the like.
+std::string cycles_label(double cycles);
+
 // A number for a CSV cell: 10 significant digits, ±inf spelled out.
 std::string csv_number(double v);
 

@@ -3,7 +3,6 @@
 // in an engine/*_stage.* module, and the physics in contact/ and wear/.
 #pragma once
 
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,10 +11,13 @@
 
 #include "engine/crack_stage.hpp"
 #include "engine/cycle_stage.hpp"
+#include "engine/fatigue_stage.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
+#include "engine/stress_stage.hpp"
 #include "engine/warnings.hpp"
+#include "engine/wear_stage.hpp"
 
 namespace fretwear {
 
@@ -26,18 +28,14 @@ struct Timings {
   std::optional<double> stress, crack;
 };
 
-struct WearStage;
-struct WearControl;  // engine/wear_stage.hpp
-struct FatigueStage;  // engine/fatigue_stage.hpp
-
 struct RunResult {
   NormalResult normal;
   std::optional<CycleStage> cycle;
-  std::shared_ptr<const WearStage> wear;  // engine/wear_stage.hpp
+  std::optional<WearStage> wear;
   std::vector<StressMap> stress_maps;      // at the top and bottom (initial state, and the last record when wearing)
   std::vector<SifSet> sifs;                // at the top and bottom of every state (initial, then each record)
   double crack_x = 0.0;                    // where the crack is (m)
-  std::shared_ptr<const FatigueStage> fatigue;  // SWT and Ruiz, with the stress maps of a cycle
+  std::optional<FatigueStage> fatigue;     // SWT and Ruiz, with the stress maps of a cycle
   Timings timings;
   std::vector<Warning> warnings;  // what the results cannot be trusted for (engine/warnings.hpp)
 };

@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "engine/checkpoint.hpp"
+#include "engine/plot.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_contacts.hpp"
 #include "engine/wear_driver.hpp"
@@ -18,6 +19,202 @@
 #include "wear/wear_law.hpp"
 
 namespace fretwear {
+namespace {
+
+std::string num(double v) { return csv_number(v); }
+
+// One row per wear record (SI); the stick-zone ends are empty when the contact slips everywhere, the fraction when
+// there is no asymptote (displacement control).
+std::string wear_history_csv(const WearStage& w) {
+  std::string s = "cycles,worn_area_m2,max_depth_m,fraction_of_asymptote,stick_left_m,stick_right_m,contact_left_m,"
+                  "contact_right_m,p_max_Pa\n";
+  const bool asymptote = w.asymptote.unavailable.empty();
+  for (const WearRecord& r : w.records)
+    s += fmt::format("{},{},{},{},{},{},{},{},{}\n", num(r.cycles), num(r.worn_area), num(r.max_depth),
+                     asymptote ? num(r.fraction) : "", r.stick_zone ? num(r.stick_zone->first) : "",
+                     r.stick_zone ? num(r.stick_zone->second) : "", num(r.contact.first), num(r.contact.second),
+                     num(r.p_max));
+  return s;
+}
+
+// Long format: one row per record and cell, then the asymptote as rows with cycles = inf (its slip is left empty:
+// the asymptote is a limit, not a cycle). Rows of record k are rows k·n ... k·n + n − 1 after the header.
+std::string profiles_csv(const Scene& scene, const NormalResult& n, const WearStage& w) {
+  const double pad = scene.wear->pad_fraction;
+  std::string s = "cycles,x_m,gap0_m,wear_m,wear_pad_m,wear_specimen_m,p_Pa,slip_per_cycle_m\n";
+  s.reserve(s.size() + (w.records.size() + 1) * std::size_t(n.grid.n) * 110);
+  for (const WearRecord& r : w.records) {
+    const std::string c = num(r.cycles);
+    for (int i = 0; i < n.grid.n; ++i)
+      s += fmt::format("{},{},{},{},{},{},{},{}\n", c, num(n.grid.x(i)), num(n.g0[i]), num(r.w[i]),
+                       num(pad * r.w[i]), num((1.0 - pad) * r.w[i]), num(r.p[i]), num(r.s[i]));
+  }
+  const WearAsymptote& a = w.asymptote;
+  if (a.w.size() != std::size_t(n.grid.n) || a.p.size() != std::size_t(n.grid.n)) return s;
+  for (int i = 0; i < n.grid.n; ++i)
+    s += fmt::format("inf,{},{},{},{},{},{},\n", num(n.grid.x(i)), num(n.g0[i]), num(a.w[i]), num(pad * a.w[i]),
+                     num((1.0 - pad) * a.w[i]), num(a.p[i]));
+  return s;
+}
+
+// The records the evolution plots show: the initial state and at most 7 more, spread evenly in log cycles, always
+// with the last.
+std::vector<std::size_t> plotted_records(const WearStage& w) {
+  constexpr std::size_t kMore = 7;
+  std::vector<std::size_t> out, worn;
+  for (std::size_t k = 0; k < w.records.size(); ++k) (w.records[k].cycles > 0.0 ? worn : out).push_back(k);
+  if (worn.size() <= kMore) {
+    for (std::size_t k : worn) out.push_back(k);
+    return out;
+  }
+  // Each target in turn takes the nearest record not yet taken; targets and records both increase, so the picks do.
+  const double lo = std::log(w.records[worn.front()].cycles), hi = std::log(w.records[worn.back()].cycles);
+  std::size_t next = 0;  // the first record in `worn` still free
+  for (std::size_t j = 0; j < kMore; ++j) {
+    const double target = lo + (hi - lo) * double(j) / double(kMore - 1);
+    const std::size_t last_free = worn.size() - (kMore - j);  // leave one record for each later target
+    std::size_t best = next;
+    for (std::size_t i = next; i <= last_free; ++i)
+      if (std::abs(std::log(w.records[worn[i]].cycles) - target) <
+          std::abs(std::log(w.records[worn[best]].cycles) - target))
+        best = i;
+    out.push_back(worn[best]);
+    next = best + 1;
+  }
+  return out;
+}
+
+// wear.gp: the worn profile and the pressure as they evolve (with the asymptote dashed), the stick zone and the
+// worn area against cycles.
+std::string wear_plot_script(const Scene& scene, const NormalResult& n, const WearStage& w) {
+  const int cells = n.grid.n;
+  const std::vector<std::size_t> shown = plotted_records(w);
+  const WearAsymptote& a = w.asymptote;
+  const WearRecord& last = w.records.back();
+  // The x range: the region that wears (the asymptote's extent, or the last contact) with a quarter margin.
+  double l = std::min(a.extent.first, last.contact.first), r = std::max(a.extent.second, last.contact.second);
+  for (const auto& z : n.zones) l = std::min(l, z.left.x), r = std::max(r, z.right.x);
+  const double m = 0.25 * (r - l);
+  l = std::max(n.grid.x_min, l - m), r = std::min(n.grid.x_max, r + m);
+
+  std::string s = fmt::format(R"(# The wear run. Re-run with: gnuplot wear.gp
+# profiles.csv holds {0} rows per record (record k: data rows k*{0} ... k*{0}+{1}, counted from 0 after the header);
+# the asymptote (cycles = inf) comes last.
+set datafile separator ','
+set grid
+)", cells, cells - 1);
+  const auto series = [&](const std::string& column, const std::string& asymptote_title) {
+    std::string plot = "plot ";
+    for (std::size_t j = 0; j < shown.size(); ++j) {
+      const std::size_t k = shown[j];
+      const double t = shown.size() > 1 ? double(j) / double(shown.size() - 1) : 1.0;
+      plot += fmt::format("'profiles.csv' skip 1 every ::{}::{} using ($2*1e3):({}) with lines lw 1.5 "
+                          "lc rgb '{}' title '{}', ",
+                          k * cells, k * cells + cells - 1, column, ramp(t),
+                          cycles_label(w.records[k].cycles));
+    }
+    const std::size_t k = w.records.size();
+    if (a.w.size() != std::size_t(cells)) return plot.substr(0, plot.size() - 2) + "\n";  // no asymptote rows
+    plot += fmt::format("'profiles.csv' skip 1 every ::{}::{} using ($2*1e3):({}) with lines lw 2 dt 2 "
+                        "lc rgb '#000000' title '{}'\n",
+                        k * cells, k * cells + cells - 1, column, asymptote_title);
+    return plot;
+  };
+  const std::string law = scene.wear->law == "archard" ? "Archard k" : "energy α";
+  s += fmt::format("set xrange [{}:{}]\nset xlabel 'x (mm)'\nset key outside right top\n", l * 1e3, r * 1e3);
+  s += fmt::format("set title \"{}: wear depth, both bodies ({} = {:.3g} 1/Pa; pad share {:.3g})\" noenhanced\n",
+                   scene.name, law, scene.wear->coefficient, scene.wear->pad_fraction);
+  s += "set ylabel 'wear depth w (µm)'\nset yrange [0:*]\n";
+  s += svg_and_png("wear_depth", series("$4*1e6", "asymptote"));
+  if (a.unavailable.empty())
+    s += fmt::format("set title \"{}: contact pressure as the slip zones wear (the asymptote's is singular at the "
+                     "stick-zone ends)\" noenhanced\n", scene.name);
+  else  // displacement control: no asymptote; in gross slip no stick zone, and the whole contact wears
+    s += fmt::format("set title \"{}: contact pressure as the contact wears ({})\" noenhanced\n", scene.name,
+                     w.records.front().stick_zone ? "no asymptote under displacement control"
+                                                  : "gross slip: no stick zone, no asymptote");
+  s += "set ylabel 'pressure p (MPa)'\n";
+  s += svg_and_png("wear_pressure", series("$7*1e-6", "asymptote"));
+
+  // Against cycles: log axis; the unworn record (cycles = 0) cannot be shown there, and a run stopped before its
+  // first record after it has nothing to show.
+  if (!(last.cycles > 0.0)) return s;
+  double n_lo = last.cycles;
+  for (const WearRecord& rec : w.records)
+    if (rec.cycles > 0.0) n_lo = std::min(n_lo, rec.cycles);
+  s += "\nunset xrange\nunset yrange\nset logscale x\nset format x '10^{%L}'\nset xlabel 'cycles N'\n";
+  s += "set key inside right center opaque box\n";
+  if (n_lo < last.cycles)
+    s += fmt::format("set xrange [{}:{}]\n", std::pow(10.0, std::floor(std::log10(n_lo))),
+                     std::pow(10.0, std::ceil(std::log10(last.cycles))));
+  const auto& s0 = w.records.front().stick_zone;
+  std::string stick;
+  if (s0) {
+    // Both ends and the contact's ends on one scale: the stick zone standing still inside a growing contact.
+    double lo = s0->first, hi = s0->second;
+    for (const WearRecord& rec : w.records) {
+      lo = std::min(lo, rec.contact.first), hi = std::max(hi, rec.contact.second);
+      if (rec.stick_zone) lo = std::min(lo, rec.stick_zone->first), hi = std::max(hi, rec.stick_zone->second);
+    }
+    if (w.asymptote.unavailable.empty())
+      lo = std::min(lo, w.asymptote.extent.first), hi = std::max(hi, w.asymptote.extent.second);
+    const double pad = 0.08 * (hi - lo);
+    s += fmt::format("set yrange [{}:{}]\n", (lo - pad) * 1e3, (hi + pad) * 1e3);
+    s += fmt::format("set title \"{}: stick zone and contact extent against cycles\" noenhanced\n", scene.name);
+    s += "set ylabel 'x (mm)'\n";
+    stick = fmt::format(
+        "plot {0} with lines lw 9 lc rgb '#d9d9d9' title 'initial stick zone', "
+        "{1} with lines lw 9 lc rgb '#d9d9d9' notitle, "
+        "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($5*1e3) with linespoints pt 7 ps 0.7 lw 1.5 "
+        "lc rgb '#1f77b4' title 'stick zone, left end', "
+        "'' skip 1 using ($1 > 0 ? $1 : NaN):($6*1e3) with linespoints pt 5 ps 0.7 lw 1.5 lc rgb '#d62728' "
+        "title 'stick zone, right end', "
+        "'' skip 1 using ($1 > 0 ? $1 : NaN):($7*1e3) with linespoints pt 6 ps 0.7 lw 1 lc rgb '#6baed6' "
+        "title 'contact, left end', "
+        "'' skip 1 using ($1 > 0 ? $1 : NaN):($8*1e3) with linespoints pt 4 ps 0.7 lw 1 lc rgb '#fc9272' "
+        "title 'contact, right end'",
+        num(s0->first * 1e3), num(s0->second * 1e3));
+    // The worn extent of the asymptote, where the contact tends (its worn zones touch at zero pressure there, so
+    // near the limit the contact's ends move by a few cells from record to record).
+    if (w.asymptote.unavailable.empty())
+      stick += fmt::format(", {0} with lines dt 2 lw 1 lc rgb '#555555' title 'worn extent of the asymptote', {1} with "
+                           "lines dt 2 lw 1 lc rgb '#555555' notitle",
+                           num(w.asymptote.extent.first * 1e3), num(w.asymptote.extent.second * 1e3));
+    s += svg_and_png("wear_stick_zone", stick + "\n");
+  }
+  const double area_top = 1.12 * std::max(a.worn_area, [&] {
+    double v = 0.0;
+    for (const WearRecord& rec : w.records) v = std::max(v, rec.worn_area);
+    return v;
+  }());
+  s += fmt::format("set title \"{}: worn area against cycles\" noenhanced\n", scene.name);
+  s += "set key inside left top opaque box\nset ylabel 'worn area ∫ w dx (µm²)'\n";
+  if (area_top > 0.0) {
+    s += fmt::format("set yrange [0:{}]\n", area_top * 1e12);
+    if (a.worn_area > 0.0)
+      s += fmt::format("set y2range [0:{}]\nset y2label 'fraction of the asymptote'\nset ytics nomirror\n"
+                       "set y2tics\n", area_top / a.worn_area);
+  }
+  // Without an asymptote (displacement control) the dashed line is the initial rate c ∫ p s dx carried on: the
+  // worn area of uniform wear at the rate of the unworn contact (Archard, for sliding: k P s N).
+  double rate0 = 0.0;
+  for (std::size_t i = 0; i < w.records.front().p.size(); ++i)
+    rate0 += w.rate_coefficient * w.records.front().p[i] * w.records.front().s[i] * n.grid.h();
+  const std::string reference = a.unavailable.empty()
+                                    ? fmt::format("{} with lines lw 2 dt 2 lc rgb '#000000' title 'asymptote'",
+                                                  num(a.worn_area * 1e12))
+                                    : fmt::format("{}*x with lines lw 2 dt 2 lc rgb '#000000' title 'initial rate "
+                                                  "c ∫ p s dx, times N'",
+                                                  num(rate0 * 1e12));
+  s += svg_and_png("wear_area",
+                   fmt::format("plot {} , "
+                               "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($2*1e12) with linespoints pt 7 "
+                               "ps 0.7 lw 1.5 lc rgb '#1f77b4' title 'fretwear'\n",
+                               reference));
+  return s;
+}
+
+}  // namespace
 
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& /*normal*/) {
   WearAsymptote a;
@@ -297,6 +494,73 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.mean_iterations_implicit =
       double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
   return stage;
+}
+
+nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
+  using nlohmann::json;
+  const WearEffect& e = *scene.wear;
+  auto interval = [](const std::optional<Interval>& i) { return i ? json{i->first, i->second} : json(nullptr); };
+  const WearRecord& last = w.records.back();
+  json out = {
+      {"law", e.law},
+      {"coefficient", e.coefficient},
+      {"rate_coefficient", w.rate_coefficient},
+      {"pad_fraction", e.pad_fraction},
+      {"stepper", e.stepper},
+      {"tolerance", e.tolerance},
+      {"cycles", last.cycles},
+      {"worn_area", last.worn_area},
+      {"max_depth", last.max_depth},
+      {"fraction_of_asymptote", w.asymptote.unavailable.empty() ? json(last.fraction) : json(nullptr)},
+      {"stick_zone_initial", interval(w.records.front().stick_zone)},
+      {"stick_zone_final", interval(last.stick_zone)},
+      {"contact_final", {last.contact.first, last.contact.second}},
+      {"steps", w.steps},
+      {"rejected_steps", w.rejected_steps},
+      {"implicit_solves", w.implicit_solves},
+      {"cycle_solves", w.responses},
+      {"mean_iterations_cycle", w.mean_iterations_cycle},
+      {"mean_iterations_implicit", w.mean_iterations_implicit},
+      {"explicit_stability_limit", w.stability_limit},
+      {"records", w.records.size()},
+      {"asymptote",
+       {{"worn_area", w.asymptote.worn_area},
+        {"max_depth", w.asymptote.max_depth},
+        {"x_max_depth", w.asymptote.x_max_depth},
+        {"extent", {w.asymptote.extent.first, w.asymptote.extent.second}}}}};
+  // Where the run got to (the last record is wear.cycles); an interrupted run stops short of cycles_target.
+  // The cycle's route on the worn profile; without an asymptote (displacement control), null and the reason.
+  out["route"] = w.route;
+  out["Q_max_initial"] = w.records.front().Q_max;
+  out["Q_max_final"] = last.Q_max;
+  if (!w.asymptote.unavailable.empty()) {
+    out["asymptote"] = nullptr;
+    out["asymptote_note"] = w.asymptote.unavailable;
+  }
+  out["cycles_target"] = e.cycles;
+  out["cycles_reached"] = w.cycles_reached;
+  if (w.resumed_from) out["resumed_from"] = *w.resumed_from;
+  if (e.stepper == "explicit") {  // the cap on ΔN below the stability limit, and the longest step taken (cycles)
+    out["explicit_step_cap"] = w.explicit_step_cap;
+    out["explicit_max_step"] = w.explicit_max_step;
+  }
+  return out;
+}
+
+void write_wear(const Scene& scene, const NormalResult& normal, const WearStage& w, OutputFolder& out,
+                Written& written) {
+  out.write("wear_history.csv", wear_history_csv(w));
+  out.write("profiles.csv", profiles_csv(scene, normal, w));
+  written.tables.insert(written.tables.end(), {"wear_history.csv", "profiles.csv"});
+  if (!scene.plots) return;
+  out.write("wear.gp", wear_plot_script(scene, normal, w));
+  if (!run_gnuplot(out.path(""), "wear.gp")) return;
+  auto& plots = written.plots;
+  plots.insert(plots.end(), {"wear_depth.svg", "wear_depth.png", "wear_pressure.svg", "wear_pressure.png"});
+  if (w.records.back().cycles > 0.0) {  // against cycles, on a log axis
+    if (w.records.front().stick_zone) plots.insert(plots.end(), {"wear_stick_zone.svg", "wear_stick_zone.png"});
+    plots.insert(plots.end(), {"wear_area.svg", "wear_area.png"});
+  }
 }
 
 }  // namespace fretwear

@@ -16,6 +16,7 @@
 
 #include "contact/wear_limit.hpp"
 #include "engine/cycle_stage.hpp"
+#include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
@@ -116,5 +117,14 @@ std::string cycle_by_cycle_problem(double stability_limit);
 // WearStage::interrupted).
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearControl& control = {});
+
+// Its part of summary.json: "wear" (the law, the worn area and depth at the last record, the stick zone at the first
+// and the last, the asymptote or why there is none, where the run got to, the integrator's counts).
+nlohmann::json summarise_wear(const Scene& scene, const WearStage& wear);
+
+// wear_history.csv, profiles.csv and, with plots, wear.gp (the worn profile and the pressure at each record, the stick
+// zone and the worn area against cycles).
+void write_wear(const Scene& scene, const NormalResult& normal, const WearStage& wear, OutputFolder& out,
+                Written& written);
 
 }  // namespace fretwear

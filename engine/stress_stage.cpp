@@ -1,0 +1,145 @@
+#include "engine/stress_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "engine/plot.hpp"
+
+namespace fretwear {
+namespace {
+
+std::string num(double v) { return csv_number(v); }
+
+std::string stress_csv(const std::vector<StressMap>& maps, double nu) {
+  std::string s = "phase,x_m,y_m,sxx_Pa,syy_Pa,sxy_Pa,von_mises_Pa,s1_Pa,s2_Pa\n";
+  for (const StressMap& m : maps)
+    for (std::size_t j = 0; j < m.y.size(); ++j)
+      for (std::size_t i = 0; i < m.x.size(); ++i) {
+        const Stress& t = m.sigma[j * m.x.size() + i];
+        const Principal pr = principal(t);
+        s += fmt::format("{},{},{},{},{},{},{},{},{}\n", m.phase, num(m.x[i]), num(m.y[j]), num(t.xx), num(t.yy),
+                         num(t.xy), num(von_mises(t, nu)), num(pr.s1), num(pr.s2));
+      }
+  return s;
+}
+
+std::string surface_stress_csv(const std::vector<StressMap>& maps) {
+  std::string s = "phase,x_m,sxx_Pa\n";
+  for (const StressMap& m : maps)
+    for (std::size_t i = 0; i < m.x.size(); ++i) s += fmt::format("{},{},{}\n", m.phase, num(m.x[i]), num(m.surface_sxx[i]));
+  return s;
+}
+
+// gnuplot's pm3d wants one block per depth: x, y, σxx, σyy, σxy, von Mises.
+std::string stress_map_dat(const StressMap& m, double nu) {
+  std::string s;
+  for (std::size_t j = 0; j < m.y.size(); ++j) {
+    for (std::size_t i = 0; i < m.x.size(); ++i) {
+      const Stress& t = m.sigma[j * m.x.size() + i];
+      s += fmt::format("{} {} {} {} {} {}\n", num(m.x[i]), num(m.y[j]), num(t.xx), num(t.yy), num(t.xy),
+                       num(von_mises(t, nu)));
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+// stress.gp: von Mises and σxx maps under the contact at the first phase.
+std::string stress_plot_script(const Scene& scene, const StressMap& m) {
+  std::string s = fmt::format(R"(# Stress under the surface. Re-run with: gnuplot stress.gp
+set view map
+set pm3d map interpolate 0,0
+set palette rgbformulae 33,13,10
+set xlabel 'x (mm)'
+set ylabel 'depth y (mm)'
+set yrange [{}:0]
+set xrange [{}:{}]
+set size ratio -1
+unset key
+)", m.y.back() * 1e3, m.x.front() * 1e3, m.x.back() * 1e3);
+  s += fmt::format("set title \"{}: von Mises stress at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
+  s += png_only("stress_von_mises", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($6*1e-6) with pm3d\n");
+  s += fmt::format("set title \"{}: σxx at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
+  s += png_only("stress_sxx", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d\n");
+  return s;
+}
+
+}  // namespace
+
+std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
+                                   double depth, const StressEffect& effect) {
+  std::vector<StressMap> out;
+  for (const Phase& ph : phases) {
+    const SurfaceTractions t{grid, ph.p, ph.q, ph.sigma_bulk};
+    StressMap m;
+    m.phase = ph.name;
+    for (int i = 0; i < effect.nx; ++i) m.x.push_back(x_lo + (x_hi - x_lo) * i / (effect.nx - 1));
+    // Depths from just below the surface (the surface itself is the traction) to `depth`.
+    for (int j = 0; j < effect.ny; ++j) m.y.push_back(depth * (j + 0.5) / effect.ny);
+    m.sigma.resize(m.x.size() * m.y.size());
+    for (std::size_t i = 0; i < m.x.size(); ++i) {
+      const auto column = stress_along_depth(t, m.x[i], m.y);
+      for (std::size_t j = 0; j < m.y.size(); ++j) m.sigma[j * m.x.size() + i] = column[j];
+      m.surface_sxx.push_back(stress_at(t, m.x[i], 0.0).xx);
+    }
+    const double mid = 0.5 * (x_lo + x_hi);
+    for (std::size_t i = 0; i < m.x.size(); ++i)
+      if (m.x[i] <= mid && (i == 0 || m.surface_sxx[i] > m.trailing_peak))
+        m.trailing_peak = m.surface_sxx[i], m.trailing_peak_x = m.x[i];
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+std::vector<Phase> final_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle,
+                                const WearStage* wear) {
+  if (wear) {
+    const WearRecord& last = wear->records.back();
+    return cycle_phases(scene, last.p, &last.q);
+  }
+  return cycle_phases(scene, normal.state.p, cycle ? &cycle->result.q_top : nullptr);
+}
+
+std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const NormalResult& normal,
+                                  const CycleStage* cycle, const WearStage* wear) {
+  const double xl = normal.zones.front().left.x, xr = normal.zones.back().right.x, half = 0.5 * (xr - xl);
+  const double depth = scene.stress->depth > 0.0 ? scene.stress->depth : half;
+  return stress_maps(model.grid, final_phases(scene, normal, cycle, wear), xl - 0.5 * half, xr + 0.5 * half, depth,
+                     *scene.stress);
+}
+
+nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& maps, const WearStage* wear) {
+  using nlohmann::json;
+  json phases = json::object();
+  for (const StressMap& m : maps) {
+    double vm = 0.0, vm_x = 0.0, vm_y = 0.0;
+    for (std::size_t j = 0; j < m.y.size(); ++j)
+      for (std::size_t i = 0; i < m.x.size(); ++i) {
+        const double v = von_mises(m.sigma[j * m.x.size() + i], scene.specimen.nu);
+        if (v > vm) vm = v, vm_x = m.x[i], vm_y = m.y[j];
+      }
+    phases[m.phase] = {{"surface_sxx_trailing_peak", m.trailing_peak},
+                       {"surface_sxx_trailing_peak_x", m.trailing_peak_x},
+                       {"von_mises_max", vm},
+                       {"von_mises_max_at", {vm_x, vm_y}}};
+  }
+  return {{"phases", phases},
+          {"cycles", wear ? wear->records.back().cycles : 0.0},
+          {"window", {maps.front().x.front(), maps.front().x.back()}},
+          {"depth", maps.front().y.back()}};
+}
+
+void write_stress(const Scene& scene, const std::vector<StressMap>& maps, OutputFolder& out, Written& written) {
+  out.write("stress.csv", stress_csv(maps, scene.specimen.nu));
+  out.write("surface_stress.csv", surface_stress_csv(maps));
+  written.tables.insert(written.tables.end(), {"stress.csv", "surface_stress.csv"});
+  if (!scene.plots) return;
+  out.write("stress_map.dat", stress_map_dat(maps.front(), scene.specimen.nu));
+  out.write("stress.gp", stress_plot_script(scene, maps.front()));
+  if (run_gnuplot(out.path(""), "stress.gp"))
+    written.plots.insert(written.plots.end(), {"stress_von_mises.png", "stress_sxx.png"});
+}
+
+}  // namespace fretwear

@@ -111,7 +111,7 @@ json wear_checkpoint(const Scene& scene, std::uint64_t hash, const DriveState& a
             {"fretwear", kVersion},
             {"scene", scene.name},
             {"scene_hash", fmt::format("{:016x}", hash)},
-            {"stepper", scene.wear->stepper},
+            {"stepper", to_string(scene.wear->stepper)},
             {"cells", int(w.size())},
             {"cycles", at.N},
             {"cycles_total", cycles_total},
@@ -127,7 +127,7 @@ json wear_checkpoint(const Scene& scene, std::uint64_t hash, const DriveState& a
 }
 
 DriveState resume_wear(const json& j, const Scene& scene, std::vector<double>& w, std::vector<WearRecord>& records) {
-  if (j.at("stepper").get<std::string>() != scene.wear->stepper || j.at("cells").get<int>() != int(w.size()))
+  if (j.at("stepper").get<std::string>() != to_string(scene.wear->stepper) || j.at("cells").get<int>() != int(w.size()))
     throw InputError("checkpoint: written by another stepper or grid");
   const DriveState at{j.at("cycles").get<double>(), j.at("dN").get<double>(), j.at("next_record").get<std::size_t>(),
                       j.at("steps").get<long>()};

@@ -37,7 +37,7 @@ void check_wear(const Scene& scene, const Model& model, const NormalResult& norm
                 Preflight* preflight) {
   const WearEffect& effect = *scene.wear;
   const WearEstimate e = estimate_wear(scene, model, solve_cycle(scene, model, normal));
-  if (effect.stepper == "cycle_by_cycle") {
+  if (effect.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(e.stability_limit); !problem.empty()) {
       problems.push_back(problem);
       return;
@@ -46,8 +46,8 @@ void check_wear(const Scene& scene, const Model& model, const NormalResult& norm
   const double t = e.seconds();
   const std::string estimate =
       fmt::format("{:.4g} cycles with stepper \"{}\" take about {} ({:.4g} cycle solves of {:.3g} ms each{})",
-                  effect.cycles, effect.stepper, duration_words(t), e.responses, 1e3 * e.seconds_per_response,
-                  effect.stepper == "explicit"
+                  effect.cycles, to_string(effect.stepper), duration_words(t), e.responses, 1e3 * e.seconds_per_response,
+                  effect.stepper == WearStepper::explicit_capped
                       ? fmt::format(", steps capped below the stability limit of {:.4g} cycles", e.stability_limit)
                       : std::string());
   if (t > kMaxRunSeconds) {

@@ -372,6 +372,9 @@ constexpr std::pair<TangentialRoute, const char*> kRouteWords[] = {
     {TangentialRoute::incremental, "incremental"}};
 constexpr std::pair<LoadControl, const char*> kControlWords[] = {{LoadControl::force, "force"},
                                                                  {LoadControl::displacement, "displacement"}};
+constexpr std::pair<WearStepper, const char*> kStepperWords[] = {{WearStepper::implicit, "implicit"},
+                                                                 {WearStepper::explicit_capped, "explicit"},
+                                                                 {WearStepper::cycle_by_cycle, "cycle_by_cycle"}};
 // A position x is given as a number, not a word.
 constexpr std::pair<CrackPosition, const char*> kCrackEdgeWords[] = {{CrackPosition::trailing_edge, "trailing_edge"},
                                                                      {CrackPosition::leading_edge, "leading_edge"}};
@@ -408,6 +411,12 @@ std::string route_words() { return words_list<TangentialRoute>(kRouteWords); }
 std::string to_string(LoadControl c) { return word_of<LoadControl>(kControlWords, c); }
 LoadControl control_from_string(std::string_view word) { return from_word<LoadControl>(kControlWords, word, "a load control"); }
 std::string control_words() { return words_list<LoadControl>(kControlWords); }
+
+std::string to_string(WearStepper stepper) { return word_of<WearStepper>(kStepperWords, stepper); }
+WearStepper stepper_from_string(std::string_view word) {
+  return from_word<WearStepper>(kStepperWords, word, "a stepper");
+}
+std::string stepper_words() { return words_list<WearStepper>(kStepperWords); }
 
 std::string to_string(CrackPosition at) {
   return at == CrackPosition::x ? "x" : word_of<CrackPosition>(kCrackEdgeWords, at);
@@ -691,22 +700,28 @@ void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
   if (const json* w = r.object("wear", false)) {
     Reader rw(*w, "effects.wear", problems);
     WearEffect effect;
-    const auto law = rw.string("law", "archard", "\"archard\" or \"energy\"");
-    effect.law = law.value_or("");
-    if (effect.law != "archard" && effect.law != "energy") {
-      if (law)
-        rw.problem("effects.wear.law", fmt::format("\"{}\" is not a wear law; use \"archard\" or \"energy\"", effect.law));
+    const auto word = rw.string("law", "archard", "\"archard\" or \"energy\"");
+    std::optional<wear::Law> law;
+    if (word) {
+      try {
+        law = wear::law_from_string(*word);
+      } catch (const InputError& e) {
+        rw.problem("effects.wear.law", e.what());
+      }
+    }
+    if (!law) {
       rw.find("k"), rw.find("alpha");  // which of them belongs is unknown until the law is: not unknown keys
     } else {
-      const char* key = effect.law == "archard" ? "k" : "alpha";
-      const char* other = effect.law == "archard" ? "alpha" : "k";
+      effect.law = *law;
+      const char* key = effect.law == wear::Law::archard ? "k" : "alpha";
+      const char* other = effect.law == wear::Law::archard ? "alpha" : "k";
       effect.coefficient = rw.number(key, std::nullopt, within(spans::kMinWearCoefficient, spans::kMaxWearCoefficient,
                                                                 "a wear coefficient", "1/Pa", true))
                                .value_or(1e-15);
       if (w->contains(other)) {
         rw.find(other);
         rw.problem(fmt::format("effects.wear.{}", other),
-                   fmt::format("belongs to the other law; the {} law takes \"{}\"", effect.law, key));
+                   fmt::format("belongs to the other law; the {} law takes \"{}\"", to_string(effect.law), key));
       }
     }
     effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
@@ -715,10 +730,13 @@ void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
     const auto cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
                                                            "a whole number of cycles from 1 to 1e12"});
     effect.cycles = cycles.value_or(1e12);  // records are checked against the cycles only when they are valid
-    effect.stepper = rw.string("stepper", "implicit", "\"implicit\", \"explicit\" or \"cycle_by_cycle\"").value_or("implicit");
-    if (effect.stepper != "implicit" && effect.stepper != "explicit" && effect.stepper != "cycle_by_cycle")
-      rw.problem("effects.wear.stepper", fmt::format("\"{}\" is not a stepper; use \"implicit\", \"explicit\" or "
-                                                     "\"cycle_by_cycle\"", effect.stepper));
+    if (const auto stepper = rw.string("stepper", "implicit", stepper_words())) {
+      try {
+        effect.stepper = stepper_from_string(*stepper);
+      } catch (const InputError& e) {
+        rw.problem("effects.wear.stepper", e.what());
+      }
+    }
     effect.tolerance = rw.number("tolerance", 1e-3, {[](double v) { return v > 0.0 && v <= 0.1; },
                                                      "a relative tolerance in (0, 0.1]"})
                            .value_or(1e-3);
@@ -1245,11 +1263,11 @@ json Scene::to_json() const {
       j["effects"]["crack"]["at"] = to_string(crack->at);
   }
   if (wear) {
-    json w = {{"law", wear->law},
-              {wear->law == "archard" ? "k" : "alpha", wear->coefficient},
+    json w = {{"law", to_string(wear->law)},
+              {wear->law == wear::Law::archard ? "k" : "alpha", wear->coefficient},
               {"pad_fraction", wear->pad_fraction},
               {"cycles", wear->cycles},
-              {"stepper", wear->stepper},
+              {"stepper", to_string(wear->stepper)},
               {"tolerance", wear->tolerance}};
     if (wear->record_count > 0)
       w["record"] = wear->record_count;

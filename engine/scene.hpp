@@ -17,6 +17,7 @@
 #include "contact/elastic_pair.hpp"
 #include "common/error.hpp"
 #include "contact/profile.hpp"
+#include "wear/wear_law.hpp"
 
 namespace fretwear {
 
@@ -69,13 +70,20 @@ struct TangentialEffect {
   int increments = 40;  // per cycle, for the incremental route
 };
 
+// effects.wear.stepper (engine/wear_stage.hpp): the contact-implicit stepper, Dormand–Prince capped below the explicit
+// stability limit, or every cycle worn.
+enum class WearStepper { implicit, explicit_capped, cycle_by_cycle };
+std::string to_string(WearStepper stepper);                 // "implicit", "explicit", "cycle_by_cycle"
+WearStepper stepper_from_string(std::string_view word);     // throws InputError naming stepper_words()
+std::string stepper_words();
+
 // effects.wear: the slip zones worn cycle after cycle.
 struct WearEffect {
-  std::string law = "archard";      // "archard" (k) or "energy" (alpha)
+  wear::Law law = wear::Law::archard;  // archard (k) or energy (alpha)
   double coefficient = 0.0;         // k or alpha (1/Pa)
   double pad_fraction = 0.5;        // share of the wear on the pad
   double cycles = 0.0;              // a whole number of cycles
-  std::string stepper = "implicit"; // "implicit", "explicit" or "cycle_by_cycle" (engine/wear_stage.hpp)
+  WearStepper stepper = WearStepper::implicit;
   double tolerance = 1e-3;          // relative, on the worn profile, per step
   std::vector<double> record;       // cycles at which the state is recorded (increasing, last = cycles)
   int record_count = 16;            // when record was given as a count (log-spaced)

@@ -120,7 +120,7 @@ set grid
                         k * cells, k * cells + cells - 1, column, asymptote_title);
     return plot;
   };
-  const std::string law = scene.wear->law == "archard" ? "Archard k" : "energy α";
+  const std::string law = scene.wear->law == wear::Law::archard ? "Archard k" : "energy α";
   s += fmt::format("set xrange [{}:{}]\nset xlabel 'x (mm)'\nset key outside right top\n", l * 1e3, r * 1e3);
   s += fmt::format("set title \"{}: wear depth, both bodies ({} = {:.3g} 1/Pa; pad share {:.3g})\" noenhanced\n",
                    scene.name, law, scene.wear->coefficient, scene.wear->pad_fraction);
@@ -250,7 +250,7 @@ std::string cycle_by_cycle_problem(double stability_limit) {
 
 WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleStage& cycle) {
   const WearEffect& effect = *scene.wear;
-  const wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction,
+  const wear::WearLaw law{effect.law, effect.coefficient, *scene.friction,
                           effect.pad_fraction};
   std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, cycle);
   const std::vector<double> w(model.grid.n, 0.0);
@@ -264,9 +264,9 @@ WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleSt
   for (double s : response.s) s_max = std::max(s_max, s);
   if (s_max == 0.0) return e;  // nothing slips: nothing wears
   e.stability_limit = wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), law.rate_coefficient(), s_max);
-  if (effect.stepper == "cycle_by_cycle") {
+  if (effect.stepper == WearStepper::cycle_by_cycle) {
     e.responses = effect.cycles;
-  } else if (effect.stepper == "explicit") {  // Dormand–Prince: six new stages a step, steps at the cap
+  } else if (effect.stepper == WearStepper::explicit_capped) {  // Dormand–Prince: six new stages a step, steps at the cap
     e.responses = 6.0 * std::ceil(effect.cycles / (kExplicitCapFraction * e.stability_limit));
   }
   return e;
@@ -460,7 +460,7 @@ void WearRun::drive_implicit(double rate_max) {
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearControl& control) {
   const WearEffect& effect = *scene.wear;
-  const wear::WearLaw law{wear::law_from_string(effect.law), effect.coefficient, *scene.friction,
+  const wear::WearLaw law{effect.law, effect.coefficient, *scene.friction,
                           effect.pad_fraction};
   WearStage stage;
   stage.rate_coefficient = law.rate_coefficient();
@@ -484,9 +484,9 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     run.record_unworn();
     return stage;
   }
-  if (effect.stepper == "explicit")
+  if (effect.stepper == WearStepper::explicit_capped)
     run.drive_explicit(rate_max);
-  else if (effect.stepper == "cycle_by_cycle")
+  else if (effect.stepper == WearStepper::cycle_by_cycle)
     run.drive_cycle_by_cycle();
   else
     run.drive_implicit(rate_max);
@@ -502,11 +502,11 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
   auto interval = [](const std::optional<Interval>& i) { return i ? json{i->first, i->second} : json(nullptr); };
   const WearRecord& last = w.records.back();
   json out = {
-      {"law", e.law},
+      {"law", to_string(e.law)},
       {"coefficient", e.coefficient},
       {"rate_coefficient", w.rate_coefficient},
       {"pad_fraction", e.pad_fraction},
-      {"stepper", e.stepper},
+      {"stepper", to_string(e.stepper)},
       {"tolerance", e.tolerance},
       {"cycles", last.cycles},
       {"worn_area", last.worn_area},
@@ -540,7 +540,7 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
   out["cycles_target"] = e.cycles;
   out["cycles_reached"] = w.cycles_reached;
   if (w.resumed_from) out["resumed_from"] = *w.resumed_from;
-  if (e.stepper == "explicit") {  // the cap on ΔN below the stability limit, and the longest step taken (cycles)
+  if (e.stepper == WearStepper::explicit_capped) {  // the cap on ΔN below the stability limit, and the longest step taken (cycles)
     out["explicit_step_cap"] = w.explicit_step_cap;
     out["explicit_max_step"] = w.explicit_max_step;
   }

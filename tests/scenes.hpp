@@ -53,7 +53,7 @@ inline Scene hertz_wear(double P, double ratio, double cycles, int cells, const 
   s.name = "wear";
   s.tangential_implied = true;
   WearEffect w;
-  w.law = law;
+  w.law = wear::law_from_string(law);
   w.coefficient = c;
   w.cycles = cycles;
   w.record_count = 8;

@@ -9,7 +9,7 @@ std::string to_string(Law law) { return law == Law::archard ? "archard" : "energ
 Law law_from_string(std::string_view word) {
   if (word == "archard") return Law::archard;
   if (word == "energy") return Law::energy;
-  throw InputError("'" + std::string(word) + "' is not a wear law; use \"archard\" or \"energy\"");
+  throw InputError("\"" + std::string(word) + "\" is not a wear law; use \"archard\" or \"energy\"");
 }
 
 }  // namespace fretwear::wear

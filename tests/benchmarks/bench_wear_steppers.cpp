@@ -40,7 +40,7 @@ Scene hertz_wear(const std::string& stepper, double tolerance) {
   Scene s = test::hertz_wear(1e5, 0.5, kCycles, kCells);
   s.name = "bench_wear_steppers";
   s.wear->record = {1e3, 1e4, kCycles};
-  s.wear->stepper = stepper;
+  s.wear->stepper = stepper_from_string(stepper);
   s.wear->tolerance = tolerance;
   return s;
 }

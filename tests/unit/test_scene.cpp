@@ -251,7 +251,7 @@ TEST_CASE("the wear effect: law and its coefficient, cycles, stepper, tolerance,
   CHECK(parse_scene(s.to_json()).to_json() == s.to_json());
   for (const char* stepper : {"implicit", "explicit", "cycle_by_cycle"}) {
     j["effects"]["wear"]["stepper"] = stepper;
-    CHECK(parse_scene(j).wear->stepper == stepper);
+    CHECK(to_string(parse_scene(j).wear->stepper) == stepper);
   }
   j["effects"]["wear"] = {{"law", "energy"}, {"k", 1e-15}, {"cycles", 1.5}, {"stepper", "rk45"},
                           {"tolerance", 0.5}, {"record", {10, 5}}, {"pad_fraction", 2}};

@@ -36,7 +36,7 @@ Scene hertz_wear(const std::string& stepper, double tolerance, double k = kK) {
   Scene s = test::hertz_wear(kP, 0.5, kCycles, kCells, "archard", k);
   s.name = "wear_steppers";
   s.wear->record = {1e3, 3e3, kCycles};
-  s.wear->stepper = stepper;
+  s.wear->stepper = stepper_from_string(stepper);
   s.wear->tolerance = tolerance;
   return s;
 }

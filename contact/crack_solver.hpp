@@ -9,7 +9,7 @@
 //
 // Method: distributed edge dislocations (Bueckner's superposition; Nowell and Hills 1987; Hills, Kelly, Dai and
 // Korsunsky 1996 (HKDK), ch. 2–4). A dislocation in the half-plane y > 0 with a traction-free surface y = 0, at z₀,
-// with Burgers vector b = b_x + i b_y, has the Muskhelishvili potentials (HKDK eq 2.x; Dundurs and Mura 1964), with
+// with Burgers vector b = b_x + i b_y, has the Muskhelishvili potentials (HKDK 1996, ch. 2; Dundurs and Mura 1964), with
 // γ = μ(b_y − i b_x)/(π(κ + 1)),
 //     Φ(z) = γ [1/(z − z₀) − 1/(z − z̄₀)] + γ̄ (z̄₀ − z₀)/(z − z̄₀)²,
 //     Ψ(z) = −Φ̄(z) − Φ(z) − z Φ′(z),   Φ̄(z) = conj Φ(z̄),
@@ -49,7 +49,7 @@
 // n̂ side (the +x side at 90°, the side below the crack when it leans toward +x) slides toward the tip relative to the
 // other face.
 //
-// Face contact (issue #5). The opening g(η) and the slip h(η) (the n̂-side face's displacement relative to the other
+// Face contact. The opening g(η) and the slip h(η) (the n̂-side face's displacement relative to the other
 // along t̂) are, with ∫_t^1 w(s) V_j(s) ds = ∫_0^{θ_t} [cos((j + 1)u) + cos(ju)] du, s = cos θ,
 //     g = ((κ + 1) l/(4μ)) ∫_t^1 w φ₁ ds,   h = ((κ + 1) l/(4μ)) ∫_t^1 w φ₂ ds,
 // computed exactly for the interpolating polynomial of φ at the collocation points t_k (the matrix Q below). Where

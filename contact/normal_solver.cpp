@@ -31,6 +31,7 @@ std::string to_string(NormalSolverOptions::Preconditioner p) {
 
 std::string to_string(Termination t) {
   switch (t) {
+    case Termination::not_run: return "not_run";
     case Termination::converged: return "converged";
     case Termination::max_iterations: return "max_iterations";
     case Termination::non_finite: return "non_finite";

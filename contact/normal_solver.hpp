@@ -67,11 +67,11 @@ inline constexpr double kWearProportioning = 0.3;
 
 std::string to_string(NormalSolverOptions::Preconditioner p);
 
-enum class Termination { converged, max_iterations, non_finite, no_admissible_cell };
+enum class Termination { not_run, converged, max_iterations, non_finite, no_admissible_cell };
 std::string to_string(Termination t);
 
 struct SolveSummary {
-  Termination termination = Termination::max_iterations;
+  Termination termination = Termination::not_run;  // until a solve has run
   int iterations = 0;
   double residual = 0.0;  // r above, at the last iterate
   double seconds = 0.0;   // wall time of the solve

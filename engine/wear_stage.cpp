@@ -380,9 +380,17 @@ DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save,
     stage_.resumed_from = s.N;
   }
   last_checkpoint_ = clock::now();
-  const bool completed = drive_times(
-      stepper, system, w_, times_, s, [this](const std::vector<double>& state, double N) { record(state, N); },
-      [this, &save](const DriveState& at, bool recorded) { return boundary(at, recorded, save); });
+  bool completed = false;
+  try {
+    completed = drive_times(
+        stepper, system, w_, times_, s, [this](const std::vector<double>& state, double N) { record(state, N); },
+        [this, &save](const DriveState& at, bool recorded) { return boundary(at, recorded, save); });
+  } catch (const wear::ImplicitSolveFailure&) {
+    throw;  // it names its cycle, and drive_implicit adds the residual
+  } catch (const ConvergenceError& e) {  // a cycle's solve on the worn profile: say where the run was
+    throw ConvergenceError(fmt::format("{}, in the wear stage at cycle {:.0f} of {:.0f} (step of {:.4g} cycles)",
+                                       e.what(), s.N, times_.back(), s.dt));
+  }
   stage_.interrupted = !completed;
   stage_.cycles_reached = s.N;
   return s;

@@ -1,7 +1,7 @@
 // The incremental route of cyclic partial slip (contact/incremental_slip.hpp): one steady cycle of 40 increments
 // (after the first loading's 10) at N = 1024 on PHYSICS.md's Hertz case (R = 10 mm, E = 200 GPa, ν = 0.3 both,
 // plane strain, P = 1e5 N/m, f = 0.5, Q/fP = 0.6), with and without Nowell–Hills' bulk tension σ/(f p0) = 0.6 at
-// Q/fP = 0.5. Budget (issue 3): ≤ 50 ms per cycle. docs/PERFORMANCE.md has the command and the numbers. The normal
+// Q/fP = 0.5. Budget: ≤ 50 ms per cycle. docs/PERFORMANCE.md has the command and the numbers. The normal
 // solve is outside the timed loop.
 #include <vector>
 

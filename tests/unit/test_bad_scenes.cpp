@@ -1,4 +1,4 @@
-// Bad input, tried (issue 6): every malformed scene in tests/bad_scenes/ makes `fretwear run` exit with status 2,
+// Bad input, tried: every malformed scene in tests/bad_scenes/ makes `fretwear run` exit with status 2,
 // name the problem (the fragment listed in expected.tsv: the key and what is allowed), and write nothing. Cases
 // that cannot live in the repository (a 100 MB file, a directory, a missing file, an unwritable output folder)
 // are made here.

@@ -1,4 +1,4 @@
-// Crack-face contact with Coulomb friction (contact/crack_solver.hpp, issue #5): a crack under pure compression
+// Crack-face contact with Coulomb friction (contact/crack_solver.hpp): a crack under pure compression
 // reports K_I = 0 with its faces touching and never overlapping; K_II with friction is bounded by the frictionless
 // value, tends to it as f → 0 and vanishes once friction sticks everything; the exact uniform case; partial closure at
 // the mouth or at the tip; and the scene path below a Hertz contact.

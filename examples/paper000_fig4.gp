@@ -24,7 +24,7 @@ $closed << EOD
 EOD
 set terminal svg size 900,560 dynamic font 'sans,12'
 set output 'output/paper000_fig4.svg'
-plot 'output/paper000_fig4/sweep.csv' skip 1 using ($1 / b(strcol(5))):($4 * b(strcol(5)) / P) with linespoints lw 2 \
+plot 'output/paper000_fig4/sweep/sweep.csv' skip 1 using ($1 / b(strcol(5))):($4 * b(strcol(5)) / P) with linespoints lw 2 \
        title 'fretwear (2048 cells)', \
      $closed using 1:2 with points pt 7 ps 1.5 title 'closed form (PHYSICS.md; a/b = 0: Hertz, 2/π)'
 set terminal pngcairo size 900,560 font 'sans,11'

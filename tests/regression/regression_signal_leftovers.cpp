@@ -34,7 +34,7 @@ TEST_CASE("two Ctrl-C while a checkpoint is written leave no temporary file, and
   Scratch scratch{"sigckpt"};
   write_file(scratch.path / "w.json", kWear);
   Running run(scratch.path, {"run", "-q", "--checkpoint-every", "0", "w.json"},
-              {"FRETWEAR_CHECKPOINT_PAUSE_MS=300", "FRETWEAR_STEP_PAUSE_MS=20"});
+              {{"FRETWEAR_CHECKPOINT_PAUSE_MS", "300"}, {"FRETWEAR_STEP_PAUSE_MS", "20"}});
   REQUIRE(appears(scratch.path, ".tmp-"));  // inside write_checkpoint, the temporary file written
   run.signal(SIGINT);
   std::this_thread::sleep_for(std::chrono::milliseconds(50));  // handled apart, not merged into one
@@ -55,7 +55,7 @@ TEST_CASE("two Ctrl-C while a checkpoint is written leave no temporary file, and
 TEST_CASE("a run interrupted before its first record: exit 130, no gnuplot error, no stray file") {
   Scratch scratch{"sigfirst"};
   write_file(scratch.path / "w.json", kWear);
-  Running run(scratch.path, {"run", "w.json"}, {"FRETWEAR_STEP_PAUSE_MS=2000"});
+  Running run(scratch.path, {"run", "w.json"}, {{"FRETWEAR_STEP_PAUSE_MS", "2000"}});
   // The first step boundary comes after the first cycle (cycle 0 recorded); stop there.
   for (int i = 0; i < 4000 && run.err_so_far().find("normal contact on") == std::string::npos; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));

@@ -1,36 +1,28 @@
-// The fretwear program as a whole, run as a user runs it, for the system tier: in a folder tree of its own with
-// the user's files in it, under a time limit, stdout and stderr kept apart, death by a signal told apart from an
-// exit status (a shell reports both as 128 + n), and what the run did to the tree found by comparing it before and
-// after.
+// The fretwear program as a whole, for the system tier. The program is run by tests/program.hpp (the one runner:
+// a folder of its own, a time limit, stdout and stderr kept apart, death by a signal told apart from an exit status);
+// this tier adds what it holds the whole program to: a folder tree of the user's with sentinel files in it, what a
+// run did to the tree found by comparing it before and after, small scenes, and case tables checked against the
+// contract.
 //
 // The contract these tests hold the program to (exit status, output folders, what is never touched) is the one of
 // the "Additions (second round)" of the workplace's SCENES.md; the tests name the rule each case checks.
 #pragma once
 
-#include <cerrno>
-#include <chrono>
 #include <cmath>
-#include <csignal>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
-#include <map>
 #include <random>
 #include <set>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include <doctest/doctest.h>
-#include <fcntl.h>
 #include <nlohmann/json.hpp>
-#include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
+
+#include "../program.hpp"  // tests/program.hpp: a bare "program.hpp" would name this file
 
 namespace fretwear::system_test {
 
@@ -45,160 +37,16 @@ constexpr int kDone = 0, kInvalid = 2, kNotConverged = 3, kInterrupted = 130;
 // under a second; the limit only keeps a hung program from stalling the suite.
 constexpr double kTimeLimit = 60.0;
 
-// ---------------------------------------------------------------------------------------------------------------
-// Running the program
-
-// How one run of the program ended.
-struct Outcome {
-  int status = -1;         // the exit status, when it exited
-  int signal = 0;          // the signal that ended it; 0 when it exited
-  bool timed_out = false;  // still running at the time limit, and killed
-  std::string out, err;    // what it wrote on stdout and on stderr
-
-  bool exited(int want) const { return signal == 0 && !timed_out && status == want; }
-  // A crash by the contract: exit 1 (internal error), death by a signal, or a hang.
-  bool crashed() const { return timed_out || signal != 0 || status == 1; }
-
-  std::string describe() const {
-    std::string said = err.substr(0, 400) + (err.size() > 400 ? "..." : "");
-    for (auto nl = said.find('\n'); nl != std::string::npos; nl = said.find('\n', nl)) said.replace(nl, 1, " | ");
-    if (timed_out) return "still running at the time limit (killed)";
-    if (signal != 0) return "killed by signal " + std::to_string(signal) + " (" + ::strsignal(signal) + ")";
-    return "exit " + std::to_string(status) + (said.empty() ? std::string() : ": " + said);
-  }
-};
-
-// What to start: the arguments after the program's name, variables added to its environment, a time limit.
-struct Launch {
-  std::vector<std::string> args;
-  std::vector<std::pair<std::string, std::string>> env = {};
-  double time_limit = kTimeLimit;  // s
-};
-
-inline std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-inline void write_file(const fs::path& p, const std::string& bytes) {
-  if (p.has_parent_path()) fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << bytes;
-}
-
-// The program running as a child in its own process group, stdout and stderr into two files of `logs`.
-class Child {
- public:
-  Child(const fs::path& dir, const fs::path& logs, Launch launch) : launch_(std::move(launch)) {
-    static int serial = 0;
-    const std::string stem = "run" + std::to_string(++serial);
-    out_ = logs / (stem + ".out");
-    err_ = logs / (stem + ".err");
-    std::vector<std::string> argv_text = {FRETWEAR_EXE};
-    argv_text.insert(argv_text.end(), launch_.args.begin(), launch_.args.end());
-    started_ = std::chrono::steady_clock::now();
-    pid_ = ::fork();
-    REQUIRE(pid_ >= 0);
-    if (pid_ == 0) {  // the child: only system calls from here on
-      ::setpgid(0, 0);
-      const int in = ::open("/dev/null", O_RDONLY);
-      const int out = ::open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      const int err = ::open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      if (in < 0 || out < 0 || err < 0 || ::chdir(dir.c_str()) != 0) ::_exit(127);
-      ::dup2(in, 0);
-      ::dup2(out, 1);
-      ::dup2(err, 2);
-      for (const auto& [name, value] : launch_.env) ::setenv(name.c_str(), value.c_str(), 1);
-      std::vector<char*> argv;
-      for (auto& a : argv_text) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      ::execv(FRETWEAR_EXE, argv.data());
-      ::_exit(127);
-    }
-    ::setpgid(pid_, pid_);  // also here, so that the group exists before either side goes on
-  }
-  ~Child() {
-    if (!reaped_) {
-      ::kill(-pid_, SIGKILL);
-      int status = 0;
-      ::waitpid(pid_, &status, 0);
-    }
-  }
-  Child(const Child&) = delete;
-  Child& operator=(const Child&) = delete;
-
-  pid_t pid() const { return pid_; }
-  double seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-  }
-
-  // True while it runs; reaps it (keeping its status) when it has ended.
-  bool running() {
-    if (reaped_) return false;
-    const pid_t r = ::waitpid(pid_, &status_, WNOHANG);
-    if (r == pid_) reaped_ = true;
-    return !reaped_;
-  }
-
-  void signal(int sig) const { ::kill(pid_, sig); }
-
-  // Waits for the end, or kills the whole group (the program and a plotting child) at the time limit.
-  Outcome wait() {
-    Outcome o;
-    while (running()) {
-      if (seconds() > launch_.time_limit) {
-        ::kill(-pid_, SIGKILL);
-        ::waitpid(pid_, &status_, 0);
-        reaped_ = true;
-        o.timed_out = true;
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    if (!o.timed_out) {
-      if (WIFEXITED(status_)) o.status = WEXITSTATUS(status_);
-      if (WIFSIGNALED(status_)) o.signal = WTERMSIG(status_);
-    }
-    o.out = read_file(out_);
-    o.err = read_file(err_);
-    fs::remove(out_);
-    fs::remove(err_);
-    return o;
-  }
-
- private:
-  Launch launch_;
-  fs::path out_, err_;
-  pid_t pid_ = -1;
-  int status_ = 0;
-  bool reaped_ = false;
-  std::chrono::steady_clock::time_point started_;
-};
+// The runner of tests/program.hpp.
+using test::Env;
+using test::Outcome;
+using test::read_file;
+using test::Snapshot;
+using test::write_file;
+using Child = test::Running;  // a started run: running(), signal(), wait()
 
 // ---------------------------------------------------------------------------------------------------------------
 // The user's folder tree
-
-// Every entry of a tree by its path relative to the tree: a file's bytes, "<folder>", "-> target" for a link.
-using Snapshot = std::map<std::string, std::string>;
-
-inline Snapshot snapshot(const fs::path& tree) {
-  Snapshot s;
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(tree, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
-    const fs::path& p = it->path();
-    const std::string key = p.lexically_relative(tree).generic_string();
-    const auto st = fs::symlink_status(p);
-    if (fs::is_symlink(st))
-      s[key] = "-> " + fs::read_symlink(p).string();
-    else if (fs::is_directory(st))
-      s[key] = "<folder>";
-    else if (fs::is_regular_file(st))
-      s[key] = read_file(p);
-    else
-      s[key] = "<special>";  // a FIFO is never read
-  }
-  return s;
-}
 
 // What changed from `before` to `after`, one line per entry ("removed x", "changed x", "new x"). Entries under
 // one of `exempt` (folders the run may write, relative to the tree) are left out.
@@ -245,12 +93,12 @@ inline std::string join(const std::vector<std::string>& lines) {
 //   <root>/tree/home/notes.txt
 //   <root>/tree/home/work/notes.txt          the working folder of every run
 //   <root>/tree/home/work/keep/inner.txt     a folder of the user's with a file in it
-//   <root>/logs/                             stdout and stderr of the runs: outside the tree
+// (The runner keeps stdout and stderr of the runs in a folder of its own, outside the tree.)
 // Every path a case hands the program resolves inside <root>/tree, so that even a program that wrongly replaces
 // the folder it was given can only harm the tree.
 class Scratch {
  public:
-  fs::path root, tree, home, work, logs;
+  fs::path root, tree, home, work;
 
   Scratch() {
     static int serial = 0;
@@ -260,9 +108,7 @@ class Scratch {
     tree = root / "tree";
     home = tree / "home";
     work = home / "work";
-    logs = root / "logs";
     fs::create_directories(work / "keep");
-    fs::create_directories(logs);
     write_file(tree / "notes.txt", "the user's notes, at the top of the tree\n");
     write_file(home / "notes.txt", "the user's notes, in home\n");
     write_file(work / "notes.txt", "the user's notes, in the working folder\n");
@@ -281,17 +127,15 @@ class Scratch {
     return work / relative;
   }
 
-  Snapshot snapshot() const { return system_test::snapshot(tree); }
+  Snapshot snapshot() const { return test::snapshot(tree); }
 
   // Runs the program in the working folder.
-  Outcome fretwear(std::vector<std::string> args, std::vector<std::pair<std::string, std::string>> env = {},
-                   double time_limit = kTimeLimit) const {
-    Child child(work, logs, Launch{std::move(args), std::move(env), time_limit});
-    return child.wait();
+  Outcome fretwear(const std::vector<std::string>& args, const Env& env = {}, double time_limit = kTimeLimit) const {
+    return test::run_program(work, args, env, time_limit);
   }
-  Child start(std::vector<std::string> args, std::vector<std::pair<std::string, std::string>> env = {},
-              double time_limit = kTimeLimit) const {
-    return Child(work, logs, Launch{std::move(args), std::move(env), time_limit});
+  // Starts the program in the working folder: wait() for it.
+  Child start(const std::vector<std::string>& args, const Env& env = {}, double time_limit = kTimeLimit) const {
+    return Child(work, args, env, time_limit);
   }
 };
 

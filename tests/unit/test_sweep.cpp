@@ -1,4 +1,5 @@
-// `fretwear sweep`: the product of variations, run on threads, one folder per run, the table and the map.
+// run_sweep: the product of variations, run on threads, one folder per run, the table and the map. The command
+// `fretwear sweep` is tried in tests/system/test_sweep_cli.cpp.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -6,7 +7,6 @@
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "engine/scene.hpp"
@@ -37,7 +37,7 @@ fs::path write_scene(const fs::path& dir) {
 }
 }  // namespace
 
-TEST_CASE("a 2 x 2 sweep on two threads into output.dir/sweep: runs, folders, table; stick share sqrt(1 - Q/fP)") {
+TEST_CASE("a 2 x 2 sweep on two threads into output.dir/sweep: runs, folders, table, stick share sqrt(1 - Q/fP)") {
   Scratch scratch;
   const fs::path scene = write_scene(scratch.path);
   const SweepResult r = run_sweep(scene, {parse_variation("load.Q.ratio=0.36,0.64"), parse_variation("load.P=1e5,4e5")},
@@ -72,13 +72,4 @@ TEST_CASE("a sweep with an invalid variant names it and runs nothing") {
   }
   CHECK_FALSE(fs::exists(scratch.path / "out"));
   CHECK_THROWS_AS(parse_variation("load.P"), InputError);
-}
-
-TEST_CASE("fretwear sweep on the command line: runs, table, exit 0; a bad --vary exits 2") {
-  Scratch scratch;
-  const fs::path scene = write_scene(scratch.path);
-  const std::string base = "cd '" + scratch.path.string() + "' && '" FRETWEAR_EXE "' sweep '" + scene.string() + "' ";
-  CHECK(WEXITSTATUS(std::system((base + "--vary load.Q.ratio=0.2,0.4 --jobs 2 -q").c_str())) == 0);
-  CHECK(fs::exists(scratch.path / "out" / "sweep" / "sweep.csv"));
-  CHECK(WEXITSTATUS(std::system((base + "--vary load.Q.ratio -q 2>/dev/null").c_str())) == 2);
 }

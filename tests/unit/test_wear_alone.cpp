@@ -287,7 +287,7 @@ TEST_CASE("restored at a step boundary, the steppers repeat the uninterrupted st
   // What a checkpoint carries besides w, N and ΔN (engine/checkpoint.hpp): the implicit stepper's state(), the
   // explicit stepper's counts and its rate system's last response, from which the derivative Dormand–Prince carries
   // from step to step is recomputed. The stand-in's contact-implicit pressure is exact, so the implicit stepper's
-  // warm starts cannot move its answer here (tests/unit/test_resume.cpp checks them end to end, on the real contact):
+  // warm starts cannot move its answer here (tests/system/test_resume.cpp checks them end to end, on the real contact):
   // without restore() the counts differ, and Dormand–Prince evaluates the rate once more.
   constexpr int kBefore = 8, kAfter = 12;
   SUBCASE("implicit") {

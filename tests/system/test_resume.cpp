@@ -5,83 +5,25 @@
 // Ctrl-C there makes), FRETWEAR_KILL_AT_STEP=N ends the program there as SIGKILL would (nothing written after the
 // last checkpoint). Real signals land on a run slowed by FRETWEAR_STEP_PAUSE_MS (2 ms a step) in the last case.
 #include <chrono>
-#include <cmath>
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <random>
 #include <set>
 #include <string>
 #include <thread>
-#include <utility>
-#include <vector>
 
 #include <doctest/doctest.h>
-#include <fcntl.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
-#include <unistd.h>
 
-namespace fs = std::filesystem;
-using nlohmann::json;
+#include "system/program.hpp"
+
+using namespace fretwear::system_test;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("fretwear-resume-" + std::to_string(::getpid()) + "-" + std::to_string(std::random_device{}()));
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
-
-// Environment variables for the child: name and value.
-using Env = std::vector<std::pair<std::string, std::string>>;
-
-// The program started in dir with args and env (stdout and stderr into dir/log.txt); its pid.
-pid_t spawn(const fs::path& dir, std::vector<std::string> args, const Env& env = {}) {
-  const pid_t pid = ::fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    if (::chdir(dir.c_str()) != 0) ::_exit(127);
-    const int fd = ::open("log.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    for (const auto& [name, value] : env) ::setenv(name.c_str(), value.c_str(), 1);
-    args.insert(args.begin(), FRETWEAR_EXE);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(FRETWEAR_EXE, argv.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
-// The exit status (128 + n when killed by signal n, as a shell reports it).
-int wait_for(pid_t pid) {
-  int status = 0;
-  REQUIRE(::waitpid(pid, &status, 0) == pid);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-int run(const fs::path& dir, std::vector<std::string> args, std::string* log = nullptr, const Env& env = {}) {
-  const int status = wait_for(spawn(dir, std::move(args), env));
-  if (log) {
-    std::ifstream in(dir / "log.txt");
-    log->assign(std::istreambuf_iterator<char>(in), {});
-  }
-  return status;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
+// Ended by `sig` as a shell reports it (128 + sig): death by the signal, or that exit status, which the program gives
+// itself when it handles the signal (and FRETWEAR_KILL_AT_STEP gives as SIGKILL's).
+bool ended_by(const Outcome& o, int sig) { return o.signal == sig || o.exited(128 + sig); }
 
 // Waits (up to 20 s) until the file exists.
 bool wait_for_file(const fs::path& p) {
@@ -143,12 +85,13 @@ struct Whole {
   int steps = 0;  // accepted steps
 };
 
-Whole whole_run(const fs::path& dir) {
-  const fs::path out = dir / "out" / "resume";
-  REQUIRE(run(dir, {"run", "s.json", "-q"}) == 0);
-  Whole w{json::parse(read(out / "summary.json")), read(out / "wear_history.csv"), 0};
+Whole whole_run(const Scratch& s) {
+  const fs::path out = s.work / "out" / "resume";
+  const Outcome r = s.fretwear({"run", "s.json", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  Whole w{json::parse(read_file(out / "summary.json")), read_file(out / "wear_history.csv"), 0};
   CHECK(w.summary["status"] == "completed");
-  CHECK(!fs::exists(dir / "out" / "resume.checkpoint"));  // a completed run leaves none
+  CHECK(!fs::exists(s.work / "out" / "resume.checkpoint"));  // a completed run leaves none
   w.steps = w.summary["wear"]["steps"].get<int>();
   REQUIRE(w.steps > 2);
   return w;
@@ -157,33 +100,33 @@ Whole whole_run(const fs::path& dir) {
 // Where to interrupt: the first step, one in the middle, and the last (its boundary comes before the last record).
 std::set<int> chosen_steps(int steps) { return {1, steps / 2, steps}; }
 
-// `run --resume` in dir ends as the uninterrupted run, to the bit, and leaves nothing behind.
-void check_resumes_to(const fs::path& dir, const Whole& whole, std::optional<double> from = std::nullopt) {
-  const fs::path out = dir / "out" / "resume";
-  std::string log;
-  REQUIRE(run(dir, {"run", "--resume", "s.json"}, &log) == 0);
-  CHECK(log.find("resuming at cycle") != std::string::npos);
-  const json resumed = json::parse(read(out / "summary.json"));
+// `run --resume` in the working folder ends as the uninterrupted run, to the bit, and leaves nothing behind.
+void check_resumes_to(const Scratch& s, const Whole& whole, std::optional<double> from = std::nullopt) {
+  const fs::path out = s.work / "out" / "resume";
+  const Outcome r = s.fretwear({"run", "--resume", "s.json"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(r.all().find("resuming at cycle") != std::string::npos);
+  const json resumed = json::parse(read_file(out / "summary.json"));
   if (from) CHECK(resumed["wear"]["resumed_from"].get<double>() == *from);
   CHECK(compare(resumed, whole.summary) > 40);
-  CHECK(read(out / "wear_history.csv") == whole.history);
-  CHECK(!fs::exists(dir / "out" / "resume.checkpoint"));
-  CHECK(!partial_left(dir / "out"));
+  CHECK(read_file(out / "wear_history.csv") == whole.history);
+  CHECK(!fs::exists(s.work / "out" / "resume.checkpoint"));
+  CHECK(!partial_left(s.work / "out"));
 }
 
 }  // namespace
 
 TEST_CASE("Ctrl-C stops a wear run with status 130, keeps what was recorded, and --resume ends as an uninterrupted run") {
-  TempDir tmp;
-  std::ofstream(tmp.path / "s.json") << scene();
-  const fs::path out = tmp.path / "out" / "resume", checkpoint = tmp.path / "out" / "resume.checkpoint";
-  const Whole whole = whole_run(tmp.path);
+  Scratch s;
+  s.write("s.json", scene());
+  const fs::path out = s.work / "out" / "resume", checkpoint = s.work / "out" / "resume.checkpoint";
+  const Whole whole = whole_run(s);
   for (const int step : chosen_steps(whole.steps)) {
     INFO("stopped at step " << step << " of " << whole.steps);
-    REQUIRE(run(tmp.path, {"run", "s.json"}, nullptr, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}}) == 130);
-    const std::string log = read(tmp.path / "log.txt");
-    CHECK(log.find("--resume") != std::string::npos);
-    const json stopped = json::parse(read(out / "summary.json"));
+    const Outcome r = s.fretwear({"run", "s.json"}, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}});
+    REQUIRE_MESSAGE(r.exited(kInterrupted), r.describe());
+    CHECK(r.all().find("--resume") != std::string::npos);
+    const json stopped = json::parse(read_file(out / "summary.json"));
     CHECK(stopped["status"] == "interrupted");
     CHECK(stopped["wear"]["steps"].get<int>() == step);
     const double reached = stopped["wear"]["cycles_reached"].get<double>();
@@ -192,73 +135,77 @@ TEST_CASE("Ctrl-C stops a wear run with status 130, keeps what was recorded, and
     CHECK(stopped["wear"]["cycles"].get<double>() <= reached);  // the last record
     CHECK(!stopped.contains("crack"));
     // What was recorded is written: a row per record so far, each as the uninterrupted run's.
-    const std::string history = read(out / "wear_history.csv");
+    const std::string history = read_file(out / "wear_history.csv");
     CHECK(whole.history.rfind(history, 0) == 0);
     CHECK(history.size() < whole.history.size());
     CHECK(fs::exists(checkpoint));  // written at the stop, whatever --checkpoint-every says
-    CHECK(!partial_left(tmp.path / "out"));
-    check_resumes_to(tmp.path, whole, reached);
+    CHECK(!partial_left(s.work / "out"));
+    check_resumes_to(s, whole, reached);
   }
 }
 
 TEST_CASE("a run killed at a chosen step resumes from its last checkpoint to the uninterrupted result") {
-  TempDir tmp;
-  std::ofstream(tmp.path / "s.json") << scene();
-  const fs::path checkpoint = tmp.path / "out" / "resume.checkpoint";
-  const Whole whole = whole_run(tmp.path);
+  Scratch s;
+  s.write("s.json", scene());
+  const fs::path checkpoint = s.work / "out" / "resume.checkpoint";
+  const Whole whole = whole_run(s);
   for (const int step : chosen_steps(whole.steps)) {
     INFO("killed at step " << step << " of " << whole.steps << ", a checkpoint at every boundary");
-    const Env kill{{"FRETWEAR_KILL_AT_STEP", std::to_string(step)}};
-    REQUIRE(run(tmp.path, {"run", "s.json", "-q", "--checkpoint-every", "0"}, nullptr, kill) == 128 + SIGKILL);
+    const Outcome r = s.fretwear({"run", "s.json", "-q", "--checkpoint-every", "0"},
+                                 {{"FRETWEAR_KILL_AT_STEP", std::to_string(step)}});
+    REQUIRE_MESSAGE(ended_by(r, SIGKILL), r.describe());
     REQUIRE(fs::exists(checkpoint));
     // A killed run may leave its staging folder; the next run removes it.
-    check_resumes_to(tmp.path, whole);
+    check_resumes_to(s, whole);
   }
   // With checkpoints at the records only (the default interval of a minute is not reached), from the last record.
   INFO("killed at step " << whole.steps / 2 << ", checkpoints at records only");
-  const Env kill{{"FRETWEAR_KILL_AT_STEP", std::to_string(whole.steps / 2)}};
-  REQUIRE(run(tmp.path, {"run", "s.json", "-q"}, nullptr, kill) == 128 + SIGKILL);
+  const Outcome r = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_KILL_AT_STEP", std::to_string(whole.steps / 2)}});
+  REQUIRE_MESSAGE(ended_by(r, SIGKILL), r.describe());
   REQUIRE(fs::exists(checkpoint));
-  const json saved = json::from_cbor(read(checkpoint));
+  const json saved = json::from_cbor(read_file(checkpoint));
   CHECK(saved["steps"].get<int>() < whole.steps / 2);
-  check_resumes_to(tmp.path, whole);
+  check_resumes_to(s, whole);
 }
 
 TEST_CASE("the reference steppers' checkpoints resume to the bit too") {
   for (const std::string stepper : {"explicit", "cycle_by_cycle"}) {
     INFO(stepper);
-    TempDir tmp;
-    std::ofstream(tmp.path / "s.json") << scene("1e-13", "1e4", stepper);
-    const Whole whole = whole_run(tmp.path);
+    Scratch s;
+    s.write("s.json", scene("1e-13", "1e4", stepper));
+    const Whole whole = whole_run(s);
     const int step = whole.steps / 2;
-    REQUIRE(run(tmp.path, {"run", "s.json", "-q"}, nullptr, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}}) ==
-            130);
-    const json stopped = json::parse(read(tmp.path / "out" / "resume" / "summary.json"));
+    const Outcome r = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}});
+    REQUIRE_MESSAGE(r.exited(kInterrupted), r.describe());
+    const json stopped = json::parse(read_file(s.work / "out" / "resume" / "summary.json"));
     CHECK(stopped["wear"]["steps"].get<int>() == step);
-    check_resumes_to(tmp.path, whole, stopped["wear"]["cycles_reached"].get<double>());
+    check_resumes_to(s, whole, stopped["wear"]["cycles_reached"].get<double>());
   }
 }
 
 TEST_CASE("--resume refuses another scene's checkpoint, and without one runs from the start") {
-  TempDir tmp;
-  std::ofstream(tmp.path / "s.json") << scene();
-  const fs::path checkpoint = tmp.path / "out" / "resume.checkpoint";
-  std::string log;
-  REQUIRE(run(tmp.path, {"run", "--resume", "s.json"}, &log) == 0);
-  CHECK(log.find("no checkpoint") != std::string::npos);
+  Scratch s;
+  s.write("s.json", scene());
+  const fs::path checkpoint = s.work / "out" / "resume.checkpoint";
+  const Outcome fresh = s.fretwear({"run", "--resume", "s.json"});
+  REQUIRE_MESSAGE(fresh.exited(kDone), fresh.describe());
+  CHECK(fresh.all().find("no checkpoint") != std::string::npos);
 
-  const pid_t pid = spawn(tmp.path, {"run", "s.json", "-q", "--checkpoint-every", "0"}, {{"FRETWEAR_STEP_PAUSE_MS", "2"}});
+  Child run = s.start({"run", "s.json", "-q", "--checkpoint-every", "0"}, {{"FRETWEAR_STEP_PAUSE_MS", "2"}});
   REQUIRE(wait_for_file(checkpoint));
-  ::kill(pid, SIGTERM);
-  CHECK(wait_for(pid) == 143);
-  const std::string kept = read(tmp.path / "out" / "resume" / "summary.json");
-  std::ofstream(tmp.path / "other.json") << scene("2e-12");  // another k, the same output folder
-  CHECK(run(tmp.path, {"run", "--resume", "other.json"}, &log) == 2);
-  CHECK(log.find("belongs to another scene") != std::string::npos);
-  CHECK(read(tmp.path / "out" / "resume" / "summary.json") == kept);  // nothing written
+  run.signal(SIGTERM);
+  const Outcome terminated = run.wait();
+  CHECK_MESSAGE(ended_by(terminated, SIGTERM), terminated.describe());
+  const std::string kept = read_file(s.work / "out" / "resume" / "summary.json");
+  s.write("other.json", scene("2e-12"));  // another k, the same output folder
+  const Outcome other = s.fretwear({"run", "--resume", "other.json"});
+  CHECK_MESSAGE(other.exited(kInvalid), other.describe());
+  CHECK(other.all().find("belongs to another scene") != std::string::npos);
+  CHECK(read_file(s.work / "out" / "resume" / "summary.json") == kept);  // nothing written
   CHECK(fs::exists(checkpoint));
   // A file that is not a checkpoint is refused too.
-  std::ofstream(checkpoint, std::ios::trunc) << "not a checkpoint";
-  CHECK(run(tmp.path, {"run", "--resume", "s.json"}, &log) == 2);
-  CHECK(log.find("not a fretwear checkpoint") != std::string::npos);
+  write_file(checkpoint, "not a checkpoint");
+  const Outcome foreign = s.fretwear({"run", "--resume", "s.json"});
+  CHECK_MESSAGE(foreign.exited(kInvalid), foreign.describe());
+  CHECK(foreign.all().find("not a fretwear checkpoint") != std::string::npos);
 }

@@ -7,57 +7,25 @@
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
 #include "support.hpp"
+#include "system/program.hpp"
 
-namespace fs = std::filesystem;
-using nlohmann::json;
+using namespace fretwear::system_test;
 
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("fretwear-cli-" + std::to_string(::getpid()) + "-" + std::to_string(rand()));
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
-
-// Runs the program with args inside dir; returns its exit status, stdout+stderr in output.
-int run_cli(const fs::path& dir, const std::string& args, std::string* output = nullptr) {
-  const fs::path log = dir / "cli.log";
-  const std::string cmd = "cd '" + dir.string() + "' && '" FRETWEAR_EXE "' " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  if (output) {
-    std::ifstream in(log);
-    output->assign(std::istreambuf_iterator<char>(in), {});
-  }
-  fs::remove(log);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 const char* kGood = R"({"name": "cli", "materials": {"both": {"E": 2e11, "nu": 0.3}},
   "profile": {"type": "cylinder", "R": 0.01}, "load": {"P": 1e5}, "grid": {"cells": 256}})";
 
-// Entries in dir other than the scene files the test wrote.
-int written(const fs::path& dir) {
-  int n = 0;
-  for (const auto& e : fs::directory_iterator(dir)) n += e.path().extension() != ".json";
-  return n;
-}
-
 }  // namespace
 
 TEST_CASE("run writes summary, resolved scene, CSV, plots and index into output/<name>") {
-  TempDir tmp;
-  write(tmp.path / "s.json", kGood);
-  std::string out;
-  REQUIRE(run_cli(tmp.path, "run s.json", &out) == 0);
-  const fs::path dir = tmp.path / "output" / "cli";
+  Scratch s;
+  s.write("s.json", kGood);
+  const Outcome r = s.fretwear({"run", "s.json"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const fs::path dir = s.work / "output" / "cli";
   for (const char* f : {"summary.json", "scene.resolved.json", "contact.csv", "index.html"})
     CHECK_MESSAGE(fs::exists(dir / f), f);
   const json summary = json::parse(std::ifstream(dir / "summary.json"));
@@ -68,8 +36,9 @@ TEST_CASE("run writes summary, resolved scene, CSV, plots and index into output/
   std::string csv_first;
   std::getline(std::ifstream(dir / "contact.csv") >> std::ws, csv_first);
   CHECK(csv_first.rfind("x_m,gap0_m,p_Pa", 0) == 0);
-  fs::copy_file(dir / "scene.resolved.json", tmp.path / "again.json");
-  REQUIRE(run_cli(tmp.path, "run again.json -q") == 0);
+  fs::copy_file(dir / "scene.resolved.json", s.work / "again.json");
+  const Outcome again_run = s.fretwear({"run", "again.json", "-q"});
+  REQUIRE_MESSAGE(again_run.exited(kDone), again_run.describe());
   const json again = json::parse(std::ifstream(dir / "summary.json"));
   // The same window to the last digit JSON keeps; the cell width is recomputed from it, so agreement is to
   // round-off of the grid, far inside the solver's tolerance.
@@ -77,72 +46,73 @@ TEST_CASE("run writes summary, resolved scene, CSV, plots and index into output/
     CHECK(again["contact"]["extent"][k].get<double>() ==
           fretwear::test::rel(summary["contact"]["extent"][k].get<double>(), 1e-10));
   // No staging folder is left behind.
-  for (const auto& e : fs::directory_iterator(tmp.path / "output"))
+  for (const auto& e : fs::directory_iterator(s.work / "output"))
     CHECK(e.path().filename().string().find(".partial") == std::string::npos);
 }
 
 TEST_CASE("an invalid scene exits with status 2, names every problem and writes nothing") {
-  TempDir tmp;
-  write(tmp.path / "bad.json", R"({"name": "bad", "materials": {"both": {"E": -1, "nu": 0.3}},
+  Scratch s;
+  s.write("bad.json", R"({"name": "bad", "materials": {"both": {"E": -1, "nu": 0.3}},
     "profile": {"type": "cylinder", "R": 0.01}, "load": {"P": 1e5}, "gird": {}})");
-  std::string out;
-  CHECK(run_cli(tmp.path, "run bad.json", &out) == 2);
-  CHECK(out.find("materials.both.E") != std::string::npos);
-  CHECK(out.find("gird: unknown key (did you mean \"grid\"?)") != std::string::npos);
-  CHECK(written(tmp.path) == 0);
+  const Snapshot before = s.snapshot();
+  const Outcome r = s.fretwear({"run", "bad.json"});
+  CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+  CHECK(r.all().find("materials.both.E") != std::string::npos);
+  CHECK(r.all().find("gird: unknown key (did you mean \"grid\"?)") != std::string::npos);
+  CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "wrote: " << join(changes(before, s.snapshot())));
 }
 
 TEST_CASE("file problems exit with status 2 and write nothing") {
-  TempDir tmp;
-  fs::create_directory(tmp.path / "adir.json");
-  write(tmp.path / "syntax.json", "{\"name\": ");
-  write(tmp.path / "bytes.json", "{\"name\": \"\xff\xfe\"}");
-  std::string out;
-  CHECK(run_cli(tmp.path, "run missing.json", &out) == 2);
-  CHECK(out.find("no such file") != std::string::npos);
-  CHECK(run_cli(tmp.path, "run adir.json", &out) == 2);
-  CHECK(out.find("is a directory") != std::string::npos);
-  CHECK(run_cli(tmp.path, "run syntax.json", &out) == 2);
-  CHECK(out.find("not valid JSON") != std::string::npos);
-  CHECK(run_cli(tmp.path, "run bytes.json", &out) == 2);
-  CHECK(out.find("UTF-8") != std::string::npos);
-  fs::remove(tmp.path / "adir.json");
-  CHECK(!fs::exists(tmp.path / "output"));
+  Scratch s;
+  fs::create_directory(s.work / "adir.json");
+  s.write("syntax.json", "{\"name\": ");
+  s.write("bytes.json", "{\"name\": \"\xff\xfe\"}");
+  for (const auto& [scene, said] : {std::pair{"missing.json", "no such file"}, {"adir.json", "is a directory"},
+                                    {"syntax.json", "not valid JSON"}, {"bytes.json", "UTF-8"}}) {
+    CAPTURE(scene);
+    const Outcome r = s.fretwear({"run", scene});
+    CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+    CHECK(r.all().find(said) != std::string::npos);
+  }
+  fs::remove(s.work / "adir.json");
+  CHECK(!fs::exists(s.work / "output"));
 }
 
 TEST_CASE("an unwritable output folder is reported before any work, with status 2") {
-  TempDir tmp;
-  write(tmp.path / "s.json", std::string(kGood).replace(std::string(kGood).find("\"grid\""), 6,
-                                                        "\"output\": {\"dir\": \"/proc/fretwear\"}, \"grid\""));
-  std::string out;
-  CHECK(run_cli(tmp.path, "run s.json", &out) == 2);
-  CHECK(out.find("output.dir") != std::string::npos);
+  Scratch s;
+  s.write("s.json", std::string(kGood).replace(std::string(kGood).find("\"grid\""), 6,
+                                               "\"output\": {\"dir\": \"/proc/fretwear\"}, \"grid\""));
+  const Outcome r = s.fretwear({"run", "s.json"});
+  CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+  CHECK(r.all().find("output.dir") != std::string::npos);
 }
 
-TEST_CASE("validate writes nothing; defaults prints a valid scene; --version; usage errors exit 2") {
-  TempDir tmp;
-  write(tmp.path / "s.json", kGood);
-  std::string out;
-  CHECK(run_cli(tmp.path, "validate s.json", &out) == 0);
-  CHECK(out.find("valid scene") != std::string::npos);
-  CHECK(!fs::exists(tmp.path / "output"));
-  CHECK(run_cli(tmp.path, "defaults", &out) == 0);
-  write(tmp.path / "d.json", out);
-  CHECK(run_cli(tmp.path, "validate d.json") == 0);
-  CHECK(run_cli(tmp.path, "--version", &out) == 0);
-  CHECK(out.find("fretwear ") == 0);
-  CHECK(run_cli(tmp.path, "run") == 2);
-  CHECK(run_cli(tmp.path, "frobnicate") == 2);
-  CHECK(run_cli(tmp.path, "--help") == 0);
+TEST_CASE("validate writes nothing, defaults prints a valid scene, --version, and usage errors exit 2") {
+  Scratch s;
+  s.write("s.json", kGood);
+  const Outcome validated = s.fretwear({"validate", "s.json"});
+  CHECK_MESSAGE(validated.exited(kDone), validated.describe());
+  CHECK(validated.all().find("valid scene") != std::string::npos);
+  CHECK(!fs::exists(s.work / "output"));
+  const Outcome defaults = s.fretwear({"defaults"});
+  CHECK_MESSAGE(defaults.exited(kDone), defaults.describe());
+  s.write("d.json", defaults.out);
+  CHECK(s.fretwear({"validate", "d.json"}).exited(kDone));
+  const Outcome version = s.fretwear({"--version"});
+  CHECK_MESSAGE(version.exited(kDone), version.describe());
+  CHECK(version.all().find("fretwear ") == 0);
+  CHECK(s.fretwear({"run"}).exited(kInvalid));
+  CHECK(s.fretwear({"frobnicate"}).exited(kInvalid));
+  CHECK(s.fretwear({"--help"}).exited(kDone));
 }
 
 TEST_CASE("convergence writes its table into the convergence subfolder of output.dir") {
-  TempDir tmp;
-  write(tmp.path / "s.json", kGood);
-  std::string out;
-  REQUIRE(run_cli(tmp.path, "convergence s.json --from 128 --to 512 -q", &out) == 0);
-  CHECK(out.find("errors against hertz") != std::string::npos);
-  std::ifstream csv(tmp.path / "output" / "cli" / "convergence" / "convergence.csv");
+  Scratch s;
+  s.write("s.json", kGood);
+  const Outcome r = s.fretwear({"convergence", "s.json", "--from", "128", "--to", "512", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(r.all().find("errors against hertz") != std::string::npos);
+  std::ifstream csv(s.work / "output" / "cli" / "convergence" / "convergence.csv");
   std::string line;
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
@@ -150,13 +120,13 @@ TEST_CASE("convergence writes its table into the convergence subfolder of output
 }
 
 TEST_CASE("a wear run writes wear_history.csv, profiles.csv and the wear plots") {
-  TempDir tmp;
-  write(tmp.path / "w.json", R"({"name": "wear", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+  Scratch s;
+  s.write("w.json", R"({"name": "wear", "materials": {"both": {"E": 2e11, "nu": 0.3}},
     "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}},
     "grid": {"cells": 256}, "effects": {"wear": {"k": 1e-12, "cycles": 1e5, "record": 4}}})");
-  std::string out;
-  REQUIRE(run_cli(tmp.path, "run w.json -q", &out) == 0);
-  const fs::path dir = tmp.path / "output" / "wear";
+  const Outcome r = s.fretwear({"run", "w.json", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const fs::path dir = s.work / "output" / "wear";
   auto lines = [](const fs::path& p) {
     std::vector<std::string> v;
     std::ifstream in(p);
@@ -191,23 +161,25 @@ TEST_CASE("a wear run writes wear_history.csv, profiles.csv and the wear plots")
   }
 }
 
-TEST_CASE("run reports each stage that ran; --verbose adds how it was solved and where the results are") {
-  TempDir dir;
-  write(dir.path / "s.json", R"({"name": "cli", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+TEST_CASE("run reports each stage that ran, and --verbose adds how it was solved and where the results are") {
+  Scratch s;
+  s.write("s.json", R"({"name": "cli", "materials": {"both": {"E": 2e11, "nu": 0.3}},
     "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
     "load": {"P": 1e5, "Q": {"ratio": 0.5}, "bulk_stress": {"amplitude": 1e8}}, "grid": {"cells": 256},
     "effects": {"wear": {"law": "archard", "k": 1e-12, "cycles": 1e4, "record": 3}, "stress": {"nx": 21, "ny": 11},
                 "crack": {"lengths": [1e-5, 2e-5]}}})");
-  std::string out;
-  REQUIRE(run_cli(dir.path, "run s.json", &out) == 0);
+  const Outcome plain = s.fretwear({"run", "s.json"});
+  REQUIRE_MESSAGE(plain.exited(kDone), plain.describe());
   for (const char* line : {"cli: contact [", "  cycle (partial_slip, analogy route)", "  wear (archard, implicit stepper)",
                            "  stress at the top of the cycle", "  crack at x = ", "results in "})
-    CHECK_MESSAGE(out.find(line) != std::string::npos, line);
-  CHECK(out.find("timings") == std::string::npos);
-  REQUIRE(run_cli(dir.path, "run s.json -v", &out) == 0);
+    CHECK_MESSAGE(plain.all().find(line) != std::string::npos, line);
+  CHECK(plain.all().find("timings") == std::string::npos);
+  const Outcome verbose = s.fretwear({"run", "s.json", "-v"});
+  REQUIRE_MESSAGE(verbose.exited(kDone), verbose.describe());
   for (const char* line : {"  grid: 256 cells", "  against the closed form (hertz)", "  wear asymptote (computed directly)",
                            "  wear steps: ", "  timings (s):", "  plots: pressure.svg"})
-    CHECK_MESSAGE(out.find(line) != std::string::npos, line);
-  REQUIRE(run_cli(dir.path, "run s.json -q", &out) == 0);
-  CHECK(out.empty());
+    CHECK_MESSAGE(verbose.all().find(line) != std::string::npos, line);
+  const Outcome quiet = s.fretwear({"run", "s.json", "-q"});
+  REQUIRE_MESSAGE(quiet.exited(kDone), quiet.describe());
+  CHECK(quiet.all().empty());
 }

@@ -1,0 +1,38 @@
+// `fretwear sweep` on the command line: the runs, the table, the exit status. What a sweep computes is checked in
+// process by tests/unit/test_sweep.cpp.
+#include <filesystem>
+#include <string>
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include "system/program.hpp"
+
+using namespace fretwear::system_test;
+
+namespace {
+
+// The sweep scene of tests/unit/test_sweep.cpp, its results under output.dir = <working folder>/out.
+fs::path write_scene(const Scratch& s) {
+  const json scene = {{"name", "sw"},
+                      {"materials", {{"both", {{"E", 2e11}, {"nu", 0.3}}}}},
+                      {"profile", {{"type", "cylinder"}, {"R", 0.01}}},
+                      {"friction", 0.5},
+                      {"load", {{"P", 1e5}, {"Q", {{"ratio", 0.5}}}}},
+                      {"grid", {{"cells", 256}}},
+                      {"effects", {{"tangential", json::object()}}},
+                      {"output", {{"dir", (s.work / "out").string()}, {"plots", false}}}};
+  return s.write("sw.json", scene.dump());
+}
+
+}  // namespace
+
+TEST_CASE("fretwear sweep on the command line: runs, table, exit 0, and a bad --vary exits 2") {
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  const Outcome r = s.fretwear({"sweep", scene, "--vary", "load.Q.ratio=0.2,0.4", "--jobs", "2", "-q"});
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(fs::exists(s.work / "out" / "sweep" / "sweep.csv"));
+  const Outcome bad = s.fretwear({"sweep", scene, "--vary", "load.Q.ratio", "-q"});
+  CHECK_MESSAGE(bad.exited(kInvalid), bad.describe());
+}

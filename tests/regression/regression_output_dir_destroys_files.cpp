@@ -73,7 +73,7 @@ TEST_CASE("output.dir naming the scene's folder deleted the scene: now refused, 
   refused_untouched(u, {"run", "data/p.json"});
 }
 
-TEST_CASE("output.dir naming a folder fretwear did not make, with files in it: refused; an empty one is used") {
+TEST_CASE("output.dir naming a folder fretwear did not make, with files in it: refused, an empty one is used") {
   UserFolder u;
   write_file(u.work / "s.json", scene_with_dir("s", "data"));
   refused_untouched(u, {"run", "s.json"});

@@ -130,7 +130,7 @@ TEST_CASE("cell averages of the flat punch and of Hertz integrate to the load") 
   CHECK(fp.pressure(1.1 * b) == 0.0);
 }
 
-TEST_CASE("stick zones: the rounded punch's eq 9 gives PHYSICS.md's c/b; Hertz c/a = √(1 − Q/fP), e/a = σ/(4fp0)") {
+TEST_CASE("stick zones: the rounded punch's eq 9 gives PHYSICS.md's c/b, Hertz c/a = √(1 − Q/fP), e/a = σ/(4fp0)") {
   // PHYSICS.md's table: c/b at Q/fP = 0.2, 0.5, 0.8 for a/b = 0.25, 0.5, 0.75, 0.9.
   const double want[4][3] = {{0.913933, 0.762002, 0.554325},
                              {0.938398, 0.831044, 0.688676},

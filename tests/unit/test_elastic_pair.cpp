@@ -19,7 +19,7 @@ TEST_CASE("similar bodies: A = 4(1 − ν²)/E in plane strain, 4/E in plane str
   CHECK(stress.A() == test::rel(4.0 / 200e9, 1e-14));
 }
 
-TEST_CASE("dissimilar bodies: A sums the compliances; a rigid pad gives β = −(1 − 2ν)/(2(1 − ν))") {
+TEST_CASE("dissimilar bodies: A sums the compliances, a rigid pad gives β = −(1 − 2ν)/(2(1 − ν))") {
   const Material steel{200e9, 0.3}, aluminium{70e9, 0.33};
   const ElasticPair pair(steel, aluminium, PlaneState::strain);
   CHECK(pair.A() == test::rel(2 * ((1 - 0.09) / 200e9 + (1 - 0.33 * 0.33) / 70e9), 1e-14));

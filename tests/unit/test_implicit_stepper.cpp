@@ -80,7 +80,7 @@ TEST_CASE("an implicit step whose solve does not converge is retried with a quar
   for (int i = 0; i < m.grid.n; ++i) CHECK(std::abs(w[i] - w_ref[i]) <= 1e-6 * w_max);
 }
 
-TEST_CASE("below one cycle the implicit stepper gives up; the engine names the solve and its residual") {
+TEST_CASE("below one cycle the implicit stepper gives up, the engine names the solve and its residual") {
   const Scene s = test::hertz_wear(1e5, 0.5, 1e4, 256);
   const Model m = make_model(s);
   AnalogyContactResponse real(s, m);

@@ -116,7 +116,7 @@ TEST_CASE("flat_rounded: zero on the flat, parabolic corners beyond ±a") {
   CHECK(k[1] == kA);
 }
 
-TEST_CASE("flat: zero on [−b, b], +∞ outside; the corners are kinks and the support's ends") {
+TEST_CASE("flat: zero on [−b, b], +∞ outside, the corners are kinks and the support's ends") {
   const Profile p(flat(kB));
   CHECK(p.gap(0.0) == 0.0);
   CHECK(p.gap(0.99 * kB) == 0.0);
@@ -170,7 +170,7 @@ TEST_CASE("rounded_wedge: parabolic tip, straight flanks, gap and slope continuo
   CHECK(close(k[1], xt, xt));
 }
 
-TEST_CASE("wavy: g0 = A (1 − cos 2πx/λ); a lone waviness is periodic") {
+TEST_CASE("wavy: g0 = A (1 − cos 2πx/λ), a lone waviness is periodic") {
   const double amp = 1e-6, lambda = 2e-4, k = 2.0 * std::numbers::pi / lambda;
   const Profile p(wavy(amp, lambda));
   for (double x : {0.0, 0.25 * lambda, 0.5 * lambda, 1.3 * lambda, -0.7 * lambda}) {
@@ -204,7 +204,7 @@ TEST_CASE("table: linear interpolation, segment slopes, +∞ outside, nodes as k
   CHECK_FALSE(p.symmetric_single_zone());
 }
 
-TEST_CASE("sum adds gaps and slopes; envelope takes the lowest term") {
+TEST_CASE("sum adds gaps and slopes, envelope takes the lowest term") {
   const double amp = 1e-7, lambda = 5e-5;
   const Profile sum(combine(ProfileType::sum, {cylinder(), wavy(amp, lambda)}));
   const Profile cyl(cylinder()), wav(wavy(amp, lambda));
@@ -301,7 +301,7 @@ TEST_CASE("symmetric_single_zone: untilted convex even profiles about one centre
   CHECK(Profile(combine(ProfileType::sum, {cylinder(), inner})).symmetric_single_zone());
 }
 
-TEST_CASE("periodic: a lone waviness, or a sum of them; not once a cylinder is added") {
+TEST_CASE("periodic: a lone waviness, or a sum of them, not once a cylinder is added") {
   CHECK(Profile(wavy(1e-6, 1e-4)).periodic());
   CHECK(Profile(combine(ProfileType::sum, {wavy(1e-6, 1e-4), wavy(1e-7, 3e-5)})).periodic());
   CHECK_FALSE(Profile(combine(ProfileType::sum, {cylinder(), wavy(1e-6, 1e-4)})).periodic());

@@ -238,7 +238,7 @@ TEST_CASE("the tangential effect: friction, and Q as exactly one of amplitude or
   CHECK(parse_scene(s.to_json()).to_json() == s.to_json());
 }
 
-TEST_CASE("the wear effect: law and its coefficient, cycles, stepper, tolerance, records; it implies the cycle") {
+TEST_CASE("the wear effect: law and its coefficient, cycles, stepper, tolerance, records, it implies the cycle") {
   json j = good();
   j["friction"] = 0.5;
   j["load"]["Q"] = {{"ratio", 0.5}};
@@ -327,7 +327,7 @@ TEST_CASE("a key given twice names its full path and every line, with the scene'
   CHECK(p.at(1) == "name[0].a: given twice (lines 1 and 2); give each key once");
 }
 
-TEST_CASE("the text of a scene: not JSON is named so; nesting is bounded however deep the text goes") {
+TEST_CASE("the text of a scene: not JSON is named so, nesting is bounded however deep the text goes") {
   std::vector<std::string> p = text_problems("{\"name\": \"s\",}");
   REQUIRE(p.size() == 1);
   CHECK(p[0].find("not valid JSON") != std::string::npos);
@@ -336,7 +336,7 @@ TEST_CASE("the text of a scene: not JSON is named so; nesting is bounded however
   p = text_problems("{\"name\": " + std::string(n, '[') + std::string(n, ']') + "}");
   REQUIRE(p.size() == 1);
   CHECK(p[0].find("nests deeper than 64") != std::string::npos);
-  CHECK(p[0].rfind("name[0][0]", 0) == 0);
+  CHECK(p[0].find(": name[0][0]") != std::string::npos);  // the file, then the path where it nests too deep
 }
 
 TEST_CASE("a deep document handed to parse_scene is described without deep recursion") {

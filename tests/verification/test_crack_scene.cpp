@@ -45,7 +45,7 @@ TEST_CASE("a crack far from the contact sees the bulk stress: K_I = 1.1215 sigma
   CHECK(c["x"].get<double>() == test::rel(-1000 * a, 1e-15));
 }
 
-TEST_CASE("the trailing edge crack sits at the contact's left edge; stresses report the surface peak there") {
+TEST_CASE("the trailing edge crack sits at the contact's left edge, stresses report the surface peak there") {
   json j = cycle_scene();
   j["effects"]["crack"] = {{"lengths", {1e-5}}};
   j["effects"]["stress"] = {{"nx", 81}, {"ny", 21}};

@@ -316,7 +316,7 @@ TEST_CASE("dissimilar: a coupled increment that cannot settle names itself") {
   }
 }
 
-TEST_CASE("dissimilar: a scene picks the incremental route and reports the sweeps; the analogy is refused") {
+TEST_CASE("dissimilar: a scene picks the incremental route and reports the sweeps, the analogy is refused") {
   Scene s = dissimilar_cycle(kTitanium, 512);
   const Model m = make_model(s);
   const NormalResult n = solve_normal(s, m);
@@ -329,7 +329,7 @@ TEST_CASE("dissimilar: a scene picks the incremental route and reports the sweep
   CHECK_THROWS_AS(solve_cycle(s, m, n), UnsupportedError);
 }
 
-TEST_CASE("dissimilar: the coupled pressure at the top and the bottom reaches the outputs; similar bodies have none") {
+TEST_CASE("dissimilar: the coupled pressure at the top and the bottom reaches the outputs, similar bodies have none") {
   Scene s = dissimilar_cycle(kTitanium, 512);
   s.name = "dissimilar_outputs";
   const Model m = make_model(s);

@@ -112,7 +112,7 @@ TEST_CASE("fatigue scene, bulk tension in phase with Q: SWT peaks at the trailin
   CHECK(st["ruiz_F2_max_x"].get<double>() < 0.0);
 }
 
-TEST_CASE("fatigue scene: a bulk tension in phase with Q raises SWT and F2; the CSV files and plots are written") {
+TEST_CASE("fatigue scene: a bulk tension in phase with Q raises SWT and F2, the CSV files and plots are written") {
   const Scene plain = parse_scene(hertz_scene(0.0)), tension = parse_scene(hertz_scene(1e8, true));
   const json s0 = make_summary(plain, Simulation(plain).run());
   const RunResult run = Simulation(tension).run();

@@ -63,7 +63,7 @@ const std::vector<std::string> kProfiles = {"0", "025", "05", "075", "1"};
 
 }  // namespace
 
-TEST_CASE("paper 000, figure 6: flat punch closed at short cracks, Hertz open; one crossover depth for all") {
+TEST_CASE("paper 000, figure 6: flat punch closed at short cracks, Hertz open, one crossover depth for all") {
   std::vector<double> crossings;
   for (const std::string& tag : kProfiles) {
     CAPTURE(tag);

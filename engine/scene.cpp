@@ -412,6 +412,13 @@ std::string to_string(LoadControl c) { return word_of<LoadControl>(kControlWords
 LoadControl control_from_string(std::string_view word) { return from_word<LoadControl>(kControlWords, word, "a load control"); }
 std::string control_words() { return words_list<LoadControl>(kControlWords); }
 
+std::string sliding_under_force_control(double Q, double fP) {
+  return fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and under force "
+                     "control the slip, hence the wear, is not determined; prescribe the displacement instead "
+                     "(load.control \"displacement\" with load.delta)",
+                     Q, fP);
+}
+
 std::string to_string(WearStepper stepper) { return word_of<WearStepper>(kStepperWords, stepper); }
 WearStepper stepper_from_string(std::string_view word) {
   return from_word<WearStepper>(kStepperWords, word, "a stepper");
@@ -884,10 +891,7 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
         problems.push_back("load.delta: given, but load.control is \"force\"; set load.control to \"displacement\" "
                            "or remove load.delta");
       if (s.wear && s.friction && given.P_ok && s.Q_max() >= *s.friction * s.P)
-        problems.push_back(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
-                                       "under force control the slip, hence the wear, is not determined; prescribe "
-                                       "the displacement instead (load.control \"displacement\" with load.delta)",
-                                       s.Q_max(), *s.friction * s.P));
+        problems.push_back(sliding_under_force_control(s.Q_max(), *s.friction * s.P));
     } else {
       if (!given.delta)
         problems.push_back("load.delta: missing; load.control \"displacement\" needs the amplitude of the relative "

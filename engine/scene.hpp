@@ -126,6 +126,10 @@ struct Scene {
   nlohmann::json to_json() const;
 };
 
+// Why wear cannot be computed under force control once Q reaches f P (N/m both): the bodies slide, and the slip,
+// hence the wear, is not determined. One sentence for the scene's check and the wear contacts' alike.
+std::string sliding_under_force_control(double Q, double fP);
+
 // The largest scene file read, the deepest nesting of its objects and arrays (a scene needs about 20: profiles
 // nest 8 levels, two each), and the grid sizes accepted.
 constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;

@@ -12,13 +12,31 @@ namespace fretwear {
 
 using nlohmann::json;
 
-bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model, double P,
-                                 std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
-  const int n = model.grid.n;
+WearContact::WearContact(const Scene& scene, const Model& model)
+    : scene_(scene),
+      model_(model),
+      solver_(*model.kernel, worn_options()),
+      implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {}
+
+void WearContact::set_gap(std::span<const double> w) {
+  const int n = model_.grid.n;
   gap_.resize(n);
-  for (int i = 0; i < n; ++i) gap_[i] = model.g0[i] + w[i];
+  for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
+}
+
+void WearContact::solve_worn(double P, ContactState& state, const char* what) {
+  const SolveSummary s = solver_.solve(gap_, P, state);
+  ++cycle_solves;
+  cycle_iterations += s.iterations;
+  if (!s.converged())
+    throw ConvergenceError(fmt::format("wear: the {} solve on the worn profile stopped ({}) with residual {:.3g}",
+                                       what, to_string(s.termination), s.residual));
+}
+
+bool WearContact::implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
+  set_gap(w);
   implicit_.p = p;
-  const SolveSummary s = solver.solve(gap_, P, implicit_, d);
+  const SolveSummary s = implicit_solver_.solve(gap_, scene_.P, implicit_, d);
   ++implicit_solves;
   implicit_iterations += s.iterations;
   if (!s.converged()) {
@@ -29,40 +47,36 @@ bool WearContact::solve_implicit(const NormalSolver& solver, const Model& model,
   return true;
 }
 
-AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model)
-    : scene_(scene),
-      model_(model),
-      solver_(*model.kernel, worn_options()),
-      implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {
+json WearContact::counts() const {
+  return {{"cycle_solves", cycle_solves},
+          {"cycle_iterations", cycle_iterations},
+          {"implicit_solves", implicit_solves},
+          {"implicit_iterations", implicit_iterations}};
+}
+
+void WearContact::restore_counts(const json& j) {
+  cycle_solves = j.at("cycle_solves").get<long>();
+  cycle_iterations = j.at("cycle_iterations").get<long>();
+  implicit_solves = j.at("implicit_solves").get<long>();
+  implicit_iterations = j.at("implicit_iterations").get<long>();
+}
+
+AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model) : WearContact(scene, model) {
   const double f = *scene.friction;
   tilt_ = model.pair.bulk_strain(scene.bulk_stress) / f;
   corrective_load_ = scene.P - scene.Q_max() / f;
   if (!(corrective_load_ > 0.0))
-    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
-                                       "under force control the slip, hence the wear, is not determined; prescribe "
-                                       "the displacement instead (load.control \"displacement\" with load.delta)",
-                                       scene.Q_max(), f * scene.P));
+    throw UnsupportedError(sliding_under_force_control(scene.Q_max(), f * scene.P));
 }
-
-int AnalogyContactResponse::cells() const { return model_.grid.n; }
-double AnalogyContactResponse::cell_width() const { return model_.grid.h(); }
 
 void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
   const Grid& grid = model_.grid;
   const int n = grid.n;
-  gap_.resize(n);
-  for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
-  auto check = [this](const SolveSummary& s, const char* what) {
-    ++cycle_solves;
-    cycle_iterations += s.iterations;
-    if (!s.converged())
-      throw ConvergenceError(fmt::format("wear: the {} solve on the worn profile stopped ({}) with residual {:.3g}",
-                                         what, to_string(s.termination), s.residual));
-  };
+  set_gap(w);
   if (int(out.p.size()) == n) normal_.p = out.p;
-  check(solver_.solve(gap_, scene_.P, normal_), "normal");
+  solve_worn(scene_.P, normal_, "normal");
   for (int i = 0; i < n; ++i) gap_[i] -= tilt_ * grid.x(i);
-  check(solver_.solve(gap_, corrective_load_, corrective_), "corrective");
+  solve_worn(corrective_load_, corrective_, "corrective");
   const double f = *scene_.friction;
   out.p = normal_.p;
   out.s.assign(n, 0.0);
@@ -81,29 +95,19 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   if (out.has_stick) out.stick_left = stick_zones_.front().left.x, out.stick_right = stick_zones_.back().right.x;
 }
 
-bool AnalogyContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
-                                               std::vector<double>& p) {
-  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
-}
-
 json AnalogyContactResponse::save() const {
-  return {{"normal", contact_state_json(normal_)},
-          {"corrective", contact_state_json(corrective_)},
-          {"implicit", contact_state_json(implicit_)},
-          {"cycle_solves", cycle_solves},
-          {"cycle_iterations", cycle_iterations},
-          {"implicit_solves", implicit_solves},
-          {"implicit_iterations", implicit_iterations}};
+  json j = counts();
+  j["normal"] = contact_state_json(normal_);
+  j["corrective"] = contact_state_json(corrective_);
+  j["implicit"] = contact_state_json(implicit_);
+  return j;
 }
 
 void AnalogyContactResponse::restore(const json& j) {
   contact_state_from(j.at("normal"), normal_);
   contact_state_from(j.at("corrective"), corrective_);
   contact_state_from(j.at("implicit"), implicit_);
-  cycle_solves = j.at("cycle_solves").get<long>();
-  cycle_iterations = j.at("cycle_iterations").get<long>();
-  implicit_solves = j.at("implicit_solves").get<long>();
-  implicit_iterations = j.at("implicit_iterations").get<long>();
+  restore_counts(j);
 }
 
 namespace {
@@ -124,10 +128,7 @@ CyclicLoad incremental_load(const Scene& scene, const Model& model) {
 
 IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x,
                                                        double reference_depth)
-    : scene_(scene),
-      model_(model),
-      solver_(*model.kernel, worn_options()),
-      implicit_solver_(*model.kernel, implicit_options(model.grid.n)),
+    : WearContact(scene, model),
       slip_(*model.kernel, incremental_options(scene)),
       datum_(model.grid, model.pair, reference_x, reference_depth),
       load_(incremental_load(scene, model)) {
@@ -135,27 +136,15 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
     throw UnsupportedError("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
                            "repeated between fixed limits of Q or of the displacement");
   if (scene.control == LoadControl::force && !(scene.Q_max() < *scene.friction * scene.P))
-    throw UnsupportedError(fmt::format("effects.wear: Q = {:.6g} N/m reaches f P = {:.6g} N/m: the bodies slide, and "
-                                       "under force control the slip, hence the wear, is not determined; prescribe "
-                                       "the displacement instead (load.control \"displacement\" with load.delta)",
-                                       scene.Q_max(), *scene.friction * scene.P));
+    throw UnsupportedError(sliding_under_force_control(scene.Q_max(), *scene.friction * scene.P));
 }
-
-int IncrementalContactResponse::cells() const { return model_.grid.n; }
-double IncrementalContactResponse::cell_width() const { return model_.grid.h(); }
 
 void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
   const Grid& grid = model_.grid;
   const int n = grid.n;
-  gap_.resize(n);
-  for (int i = 0; i < n; ++i) gap_[i] = model_.g0[i] + w[i];
+  set_gap(w);
   if (int(out.p.size()) == n) normal_.p = out.p;
-  const SolveSummary s = solver_.solve(gap_, scene_.P, normal_);
-  ++cycle_solves;
-  cycle_iterations += s.iterations;
-  if (!s.converged())
-    throw ConvergenceError(fmt::format("wear: the normal solve on the worn profile stopped ({}) with residual {:.3g}",
-                                       to_string(s.termination), s.residual));
+  solve_worn(scene_.P, normal_, "normal");
   if (normal_.p.front() > 0.0 || normal_.p.back() > 0.0)
     throw InputError(fmt::format("grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the "
                                  "contact widens as it wears (in gross slip without limit): widen grid.window, or "
@@ -177,29 +166,19 @@ void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleR
   if (out.has_stick) out.stick_left = cycle_.stick_zone->first, out.stick_right = cycle_.stick_zone->second;
 }
 
-bool IncrementalContactResponse::implicit_pressure(std::span<const double> w, std::span<const double> d,
-                                                   std::vector<double>& p) {
-  return solve_implicit(implicit_solver_, model_, scene_.P, w, d, p);
-}
-
 json IncrementalContactResponse::save() const {
-  return {{"route", "incremental"},
-          {"normal", contact_state_json(normal_)},
-          {"implicit", contact_state_json(implicit_)},
-          {"cycle_solves", cycle_solves},
-          {"cycle_iterations", cycle_iterations},
-          {"implicit_solves", implicit_solves},
-          {"implicit_iterations", implicit_iterations}};
+  json j = counts();
+  j["route"] = "incremental";
+  j["normal"] = contact_state_json(normal_);
+  j["implicit"] = contact_state_json(implicit_);
+  return j;
 }
 
 void IncrementalContactResponse::restore(const json& j) {
   if (j.value("route", "") != "incremental") throw InputError("checkpoint: written by the analogy route's wear run");
   contact_state_from(j.at("normal"), normal_);
   contact_state_from(j.at("implicit"), implicit_);
-  cycle_solves = j.at("cycle_solves").get<long>();
-  cycle_iterations = j.at("cycle_iterations").get<long>();
-  implicit_solves = j.at("implicit_solves").get<long>();
-  implicit_iterations = j.at("implicit_iterations").get<long>();
+  restore_counts(j);
 }
 
 std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const CycleStage& cycle) {

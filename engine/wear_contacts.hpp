@@ -26,6 +26,10 @@ namespace fretwear {
 // (records), the warm starts of its solves (checkpoints) and its counts.
 class WearContact : public wear::ContactResponse {
  public:
+  int cells() const final { return model_.grid.n; }
+  double cell_width() const final { return model_.grid.h(); }
+  // The end-of-step pressure (route-independent for similar bodies: the pressure does not depend on the shear).
+  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) final;
   // The shear traction at the top of the cycle of the last respond() per cell (Pa); the bottom is its reverse.
   virtual const std::vector<double>& shear_top() const = 0;
   // The tangential load at the top of the cycle of the last respond() (N/m).
@@ -40,6 +44,15 @@ class WearContact : public wear::ContactResponse {
   long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
 
  protected:
+  WearContact(const Scene& scene, const Model& model);
+  // gap_ = g0 + w, the gap of the worn profile.
+  void set_gap(std::span<const double> w);
+  // One of the cycle's solves on the worn profile (gap_, or gap_ shifted): counted, and a ConvergenceError naming
+  // `what` when it stops short.
+  void solve_worn(double P, ContactState& state, const char* what);
+  // The counts, for save() and restore().
+  nlohmann::json counts() const;
+  void restore_counts(const nlohmann::json& j);
   // Solves on a worn profile: its worn cells sit at zero gap and zero pressure by the hundred near the limit, and
   // enter the contact set only through the proportioning test (contact/normal_solver.hpp).
   static NormalSolverOptions worn_options() {
@@ -56,10 +69,10 @@ class WearContact : public wear::ContactResponse {
     o.max_iterations = std::max(2000, cells);
     return o;
   }
-  // The end-of-step pressure of wear::ContactResponse::implicit_pressure, with `solver` (route-independent for
-  // similar bodies: the pressure does not depend on the shear).
-  bool solve_implicit(const NormalSolver& solver, const Model& model, double P, std::span<const double> w,
-                      std::span<const double> d, std::vector<double>& p);
+  const Scene& scene_;
+  const Model& model_;
+  NormalSolver solver_;           // the cycle's solves
+  NormalSolver implicit_solver_;  // the contact-implicit steps'
   ContactState implicit_;
   std::vector<double> gap_;
 };
@@ -68,10 +81,7 @@ class WearContact : public wear::ContactResponse {
 class AnalogyContactResponse : public WearContact {
  public:
   AnalogyContactResponse(const Scene& scene, const Model& model);
-  int cells() const override;
-  double cell_width() const override;
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
-  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
   const std::vector<double>& shear_top() const override { return q_top_; }
   double Q_top() const override { return scene_.Q_max(); }
   // The last corrective pressure (for records).
@@ -83,10 +93,6 @@ class AnalogyContactResponse : public WearContact {
   void restore(const nlohmann::json& j) override;
 
  private:
-  const Scene& scene_;
-  const Model& model_;
-  NormalSolver solver_;
-  NormalSolver implicit_solver_;
   double tilt_ = 0.0, corrective_load_ = 0.0;
   ContactState normal_, corrective_;
   std::vector<double> q_top_;
@@ -105,11 +111,8 @@ class IncrementalContactResponse : public WearContact {
  public:
   // reference_x, reference_depth: the datum (m), as CycleStage has them.
   IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x, double reference_depth);
-  int cells() const override;
-  double cell_width() const override;
   // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
-  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override;
   const std::vector<double>& shear_top() const override { return cycle_.q_top; }
   double Q_top() const override { return cycle_.Q_peak; }
   // The steady cycle of the last respond().
@@ -118,10 +121,6 @@ class IncrementalContactResponse : public WearContact {
   void restore(const nlohmann::json& j) override;
 
  private:
-  const Scene& scene_;
-  const Model& model_;
-  NormalSolver solver_;
-  NormalSolver implicit_solver_;
   IncrementalSlipSolver slip_;
   ReferenceDatum datum_;
   CyclicLoad load_;

@@ -99,3 +99,19 @@ TEST_CASE("a wear run estimated past an hour warns before it starts (validate sa
   CHECK(o.err.find("warning: long_run: 1e+12 cycles with stepper \"explicit\" take about") != std::string::npos);
   CHECK(o.out.find("its wear stage will take about") != std::string::npos);
 }
+
+TEST_CASE("a slip zone narrower than the grid resolves warns, and so does a worn area past its asymptote") {
+  // Q/fP = 0.001: the slip zones are a (1 − √0.999) ≈ 5e-4 a wide, under a cell of 256 over the window.
+  CHECK(warning_codes("{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "load": {"P": 1e5, "Q": {"ratio": 0.001}}, "grid": {"cells": 256}, "effects": {"tangential": {}}})") ==
+        std::set<std::string>{"slip_zone_under_resolved"});
+  // examples/hertz_wear.json: 101.05 % of the asymptote at 1024 cells, past 4 cells of its worn width (0.69 %).
+  CHECK(warning_codes("{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 1024},
+    "effects": {"wear": {"k": 1e-12, "cycles": 1e7}}, "output": {"plots": false}})") ==
+        std::set<std::string>{"wear_past_asymptote"});
+  // The same cylinder at Q/fP = 0.5, short of the limit: no warning.
+  CHECK(warning_codes("{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 1024},
+    "effects": {"wear": {"k": 1e-12, "cycles": 1e3}}, "output": {"plots": false}})").empty());
+}

@@ -139,38 +139,24 @@ void analogy_delta_max(const Model& model, const NormalResult& normal, const Cyc
 
 }  // namespace
 
-CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal) {
+CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal) {
   CycleStage stage;
-  stage.f = *scene.friction;
-  stage.Q_max = scene.Q_max();
+  stage.plan = plan;
+  stage.f = plan.load.f;
+  stage.Q_max = plan.load.Q_max;
   stage.bulk_stress = scene.bulk_stress;
-  const ElasticPair& pair = model.pair;
-  const double bulk_strain = pair.bulk_strain(scene.bulk_stress);
-  const bool displacement = scene.control == LoadControl::displacement;
-  CyclicLoad load{scene.P, stage.Q_max, stage.f, bulk_strain, displacement ? *scene.delta : 0.0};
-  for (const auto& pt : scene.history) load.history.push_back({pt[0], pt[1], pt[2], pair.bulk_strain(pt[3])});
-  const bool history = !load.history.empty();
-  const TangentialRoute route = scene.tangential->route;
+  const CyclicLoad& load = plan.load;
   // The datum: reference points 10 contact half-widths (or grid.reference_depth) below the contact's centre.
   const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
   stage.reference_x = 0.5 * (x_left + x_right);
   stage.reference_depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
-  const ReferenceDatum datum(model.grid, pair, stage.reference_x, stage.reference_depth);
-  if (route == TangentialRoute::analogy && (displacement || history))  // parse_scene refuses it too
-    throw UnsupportedError("effects.tangential: route \"analogy\" cannot run load.control \"displacement\" or "
-                           "load.history; use \"auto\" or \"incremental\"");
-  // Dissimilar bodies (Dundurs β ≠ 0): normal and tangential problems coupled, the incremental route only.
-  const bool dissimilar = std::abs(pair.beta()) > 1e-12;
-  if (route == TangentialRoute::analogy && dissimilar)  // parse_scene refuses it too
-    throw UnsupportedError(fmt::format("effects.tangential: route \"analogy\" needs similar bodies, and Dundurs beta "
-                                       "= {:.4g}; use \"auto\" or \"incremental\"",
-                                       pair.beta()));
-  if (route != TangentialRoute::incremental && !displacement && !history && !dissimilar) {
+  const ReferenceDatum datum(model.grid, model.pair, stage.reference_x, stage.reference_depth);
+  if (plan.analogy_first()) {
     stage.route = "analogy";
     stage.result = TangentialSolver(*model.kernel).solve_cycle(model.g0, normal.state, normal.zones, load);
     if (stage.result.regime == Regime::partial_slip) analogy_delta_max(model, normal, load, datum, stage.result);
     if (stage.result.regime != Regime::reverse_slip) return stage;
-    if (route == TangentialRoute::analogy)
+    if (plan.asked == TangentialRoute::analogy)
       throw UnsupportedError("effects.tangential: " + stage.result.message +
                              "; the scene asks for route \"analogy\": use \"auto\" or \"incremental\"");
   }
@@ -178,25 +164,26 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
   // whatever the analogy cannot do). The steady cycle is the second, after the first loading and one full cycle.
   IncrementalSlipOptions options;
   options.increments_per_cycle = scene.tangential->increments;
-  if (dissimilar) options.cycles = 2;  // β ≠ 0: the first cycle after the first loading is not yet the steady one
+  if (plan.dissimilar()) options.cycles = 2;  // β ≠ 0: the first cycle after the first loading is not yet the steady one
   const IncrementalSlipSolver solver(*model.kernel, options);
-  const NormalCoupling coupling{dissimilar ? pair.beta() : 0.0, model.g0};
+  const NormalCoupling coupling{plan.beta, model.g0};
+  const bool history = !load.history.empty();
   const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum)
                                       : solver.solve(normal.state, load, &datum, &coupling);
   stage.ran = TangentialRoute::incremental;
-  stage.route = route == TangentialRoute::incremental ? "incremental"
-                : displacement ? "incremental (auto: displacement control)"
-                : history      ? "incremental (auto: load history)"
-                : dissimilar   ? "incremental (auto: dissimilar bodies)"
-                               : "incremental (auto: the analogy found reverse slip)";
-  if (dissimilar)
-    stage.route += fmt::format(" [beta = {:.4g}: {} coupling sweeps over {} increments, at most {}]", pair.beta(),
+  stage.route = plan.analogy_first() ? "incremental (auto: the analogy found reverse slip)" : plan.incremental_because;
+  if (plan.dissimilar())
+    stage.route += fmt::format(" [beta = {:.4g}: {} coupling sweeps over {} increments, at most {}]", plan.beta,
                                r.n_coupling_sweeps, r.n_increments, r.max_coupling_sweeps);
   stage.result = r.cycles.back();
-  if (dissimilar) stage.p_top = r.p_top, stage.p_bottom = r.p_bottom;
-  if ((displacement || history) && !stage.result.slip_range.empty())
+  if (plan.dissimilar()) stage.p_top = r.p_top, stage.p_bottom = r.p_bottom;
+  if ((scene.control == LoadControl::displacement || history) && !stage.result.slip_range.empty())
     stage.Q_max = stage.result.Q_peak;  // the peak Q reached
   return stage;
+}
+
+CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal) {
+  return solve_cycle(scene, model, plan_cycle(scene, model.pair), normal);
 }
 
 std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p, const std::vector<double>* q_top) {

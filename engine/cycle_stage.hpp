@@ -24,6 +24,7 @@ struct Phase {
 
 // What the cycle stage computed, with the route that ran.
 struct CycleStage {
+  CyclePlan plan;  // the load and the route as planned (engine/setup.hpp): what the wear stage runs too
   CycleResult result;
   std::string route;  // the route that ran, and why ("incremental (auto: the analogy found reverse slip)")
   TangentialRoute ran = TangentialRoute::analogy;  // analogy or incremental: what the wear stage runs too
@@ -36,7 +37,9 @@ struct CycleStage {
   std::vector<double> p_top, p_bottom;
 };
 
-// One steady load cycle. Throws UnsupportedError where the route the cycle needs is not built.
+// One steady load cycle, by the plan. Throws UnsupportedError where the analogy, asked for, finds reverse slip.
+CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal);
+// The same with the scene's own plan (plan_cycle).
 CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal);
 
 // The loads at the top and the bottom of the cycle (just "loaded" without one): in phase, the bottom is the top

@@ -5,8 +5,6 @@
 
 #include <fmt/format.h>
 
-#include "engine/fatigue_stage.hpp"
-#include "engine/wear_stage.hpp"
 
 namespace fretwear {
 namespace fs = std::filesystem;
@@ -58,13 +56,8 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
   out.write_json("scene.resolved.json", resolved.to_json());
   Written written;
   write_normal(scene, result.normal, result.cycle ? result.cycle->p_top : std::vector<double>{}, out, written);
-  if (result.cycle) write_cycle(scene, result.normal, *result.cycle, out, written);
-  if (result.wear) write_wear(scene, result.normal, *result.wear, out, written);
-  if (!result.sifs.empty()) write_crack(scene, result.sifs, result.crack_x, result.wear.has_value(), out, written);
-  if (!result.stress_maps.empty()) {
-    write_stress(scene, result.stress_maps, out, written);
-    if (result.fatigue) write_fatigue(scene, result.normal, *result.cycle, *result.fatigue, out, written);
-  }
+  for (const StageOutputs& stage : stage_outputs())
+    if (stage.ran(result)) stage.write(scene, result, out, written);
   summary["plots"] = written.plots;
   out.write_json("summary.json", summary);
   out.write("index.html", index_html(scene, summary, written.plots, written.tables));

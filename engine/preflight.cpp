@@ -33,10 +33,11 @@ void check_strain(const Scene& scene, const Model& model, const NormalResult& no
 }
 
 // The wear run's cost from its first cycle: refused past kMaxRunSeconds, a warning past kLongRunSeconds.
-void check_wear(const Scene& scene, const Model& model, const NormalResult& normal, std::vector<std::string>& problems,
+void check_wear(const Scene& scene, const Setup& setup, const NormalResult& normal, std::vector<std::string>& problems,
                 Preflight* preflight) {
   const WearEffect& effect = *scene.wear;
-  const WearEstimate e = estimate_wear(scene, model, solve_cycle(scene, model, normal));
+  const WearEstimate e =
+      estimate_wear(scene, setup.model, solve_cycle(scene, setup.model, *setup.cycle, normal));
   if (effect.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(e.stability_limit); !problem.empty()) {
       problems.push_back(problem);
@@ -67,13 +68,14 @@ void check_wear(const Scene& scene, const Model& model, const NormalResult& norm
 std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflight) {
   std::vector<std::string> problems;
   try {
-    const Model model = make_model(scene);
-    const NormalResult normal = solve_normal(scene, model);
-    check_strain(scene, model, normal, problems);
+    const Setup setup = make_setup(scene);
+    const NormalResult normal = solve_normal(scene, setup.model);
+    check_strain(scene, setup.model, normal, problems);
     if (!problems.empty()) return problems;
     // The analogy route refuses a cycle it cannot follow (reverse slip) only once it has solved it.
-    if (scene.tangential && scene.tangential->route == TangentialRoute::analogy) solve_cycle(scene, model, normal);
-    if (scene.wear) check_wear(scene, model, normal, problems, preflight);
+    if (setup.cycle && setup.cycle->asked == TangentialRoute::analogy)
+      solve_cycle(scene, setup.model, *setup.cycle, normal);
+    if (setup.effects.wear) check_wear(scene, setup, normal, problems, preflight);
   } catch (const ConvergenceError&) {
     // Not the scene's problem: the run reports it, with what it solved, and exits with status 3.
   } catch (const InputError& e) {

@@ -1,5 +1,7 @@
 #include "engine/setup.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "engine/normal_stage.hpp"
@@ -60,6 +62,47 @@ Model make_model(const Scene& scene, int cells) {
   }
   if (scene.wear) w = widen_for_wear(scene, profile, w);
   return model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w);
+}
+
+CyclicLoad cyclic_load(const Scene& scene, const ElasticPair& pair) {
+  const bool displacement = scene.control == LoadControl::displacement;
+  CyclicLoad load{scene.P, scene.Q_max(), *scene.friction, pair.bulk_strain(scene.bulk_stress),
+                  displacement ? *scene.delta : 0.0};
+  for (const auto& pt : scene.history) load.history.push_back({pt[0], pt[1], pt[2], pair.bulk_strain(pt[3])});
+  return load;
+}
+
+CyclePlan plan_cycle(const Scene& scene, const ElasticPair& pair) {
+  CyclePlan plan;
+  const bool displacement = scene.control == LoadControl::displacement;
+  plan.load = cyclic_load(scene, pair);
+  const bool history = !plan.load.history.empty();
+  plan.asked = scene.tangential->route;
+  // Dissimilar bodies (Dundurs β ≠ 0): normal and tangential problems coupled, the incremental route only.
+  plan.beta = std::abs(pair.beta()) > 1e-12 ? pair.beta() : 0.0;
+  if (plan.asked == TangentialRoute::analogy) {
+    if (displacement || history)
+      throw UnsupportedError("effects.tangential: route \"analogy\" cannot run load.control \"displacement\" or "
+                             "load.history; use \"auto\" or \"incremental\"");
+    if (plan.dissimilar())
+      throw UnsupportedError(fmt::format("effects.tangential: route \"analogy\" needs similar bodies, and Dundurs "
+                                         "beta = {:.4g}; use \"auto\" or \"incremental\"",
+                                         pair.beta()));
+  }
+  plan.incremental_because = plan.asked == TangentialRoute::incremental ? "incremental"
+                             : displacement ? "incremental (auto: displacement control)"
+                             : history      ? "incremental (auto: load history)"
+                             : plan.dissimilar() ? "incremental (auto: dissimilar bodies)"
+                                                 : "";
+  return plan;
+}
+
+Setup make_setup(const Scene& scene) {
+  Setup setup{make_model(scene), std::nullopt, {}};
+  if (scene.tangential) setup.cycle = plan_cycle(scene, setup.model.pair);
+  setup.effects = {scene.tangential.has_value(), scene.wear.has_value(), scene.stress.has_value(),
+                   scene.stress.has_value() && scene.tangential.has_value(), scene.crack.has_value()};
+  return setup;
 }
 
 }  // namespace fretwear

@@ -1,14 +1,19 @@
 // What every stage of a scene shares, resolved once before any stage runs (docs/METHODS.md, "The stage layer"):
-// the bodies, the profile, and the grid over the window chosen for them, with the initial gap and the kernel.
+// the model (the bodies, the profile, and the grid over the window chosen for them, with the initial gap and the
+// kernel), the plan of the load cycle (the cyclic load with its bulk strain, and the route with the reason for it),
+// and the effects to run. Stages take these decisions from here and never make them again.
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "contact/elastic_pair.hpp"
 #include "contact/grid.hpp"
 #include "contact/half_plane_kernel.hpp"
 #include "contact/profile.hpp"
+#include "contact/tangential_solver.hpp"
 #include "contact/window.hpp"
 #include "engine/scene.hpp"
 
@@ -26,5 +31,43 @@ struct Model {
 
 // The model of a scene on `cells` cells (the scene's own when 0).
 Model make_model(const Scene& scene, int cells = 0);
+
+// How the steady load cycle is solved, decided from the scene and the bodies alone, before any solve.
+struct CyclePlan {
+  // P, Q_max, f, δ, and the bulk strain ε = σ (κ₂ + 1)/(8 μ₂) of the bulk stress (ElasticPair::bulk_strain),
+  // each history point's too.
+  CyclicLoad load;
+  TangentialRoute asked = TangentialRoute::automatic;  // effects.tangential.route
+  double beta = 0.0;  // Dundurs β of the pair: ≠ 0 couples the normal and the tangential problems
+  // Why the incremental route runs without the analogy being tried: empty when the analogy is tried first (asked,
+  // or "auto" under force control with one Q amplitude on similar bodies), else "incremental" when asked, or
+  // "incremental (auto: displacement control)", "(auto: load history)", "(auto: dissimilar bodies)". Under "auto"
+  // the analogy may still hand over to the incremental route once it has solved the cycle and found reverse slip.
+  std::string incremental_because;
+  bool analogy_first() const { return incremental_because.empty(); }
+  bool dissimilar() const { return beta != 0.0; }
+};
+
+// The cyclic load of a scene with friction: P, Q_max, f, δ, and the bulk strain of the bulk stress (each history
+// point's too).
+CyclicLoad cyclic_load(const Scene& scene, const ElasticPair& pair);
+
+// The plan of a scene with a tangential effect. Throws UnsupportedError where the route asked for cannot run the
+// load or the bodies (the scene's checks refuse these too).
+CyclePlan plan_cycle(const Scene& scene, const ElasticPair& pair);
+
+// The effects a scene runs, in order, with those another needs (tangential for wear, and the fatigue measures of a
+// stress map under a cycle).
+struct Effects {
+  bool cycle = false, wear = false, stress = false, fatigue = false, crack = false;
+};
+
+struct Setup {
+  Model model;
+  std::optional<CyclePlan> cycle;  // with the cycle effect
+  Effects effects;
+};
+
+Setup make_setup(const Scene& scene);
 
 }  // namespace fretwear

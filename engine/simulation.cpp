@@ -35,33 +35,68 @@ auto timed(std::optional<double>& seconds, Stage stage) {
 RunResult Simulation::run(const WearControl* control) const {
   const auto t0 = std::chrono::steady_clock::now();
   RunResult r;
-  const Model model = make_model(scene_);
+  const Setup setup = make_setup(scene_);
+  const Model& model = setup.model;
   r.normal = solve_normal(scene_, model);
   r.timings.normal = seconds_since(t0);
-  if (scene_.tangential)
-    r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, r.normal); });
-  if (scene_.wear)
+  if (setup.effects.cycle)
+    r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
+  if (setup.effects.wear)
     r.wear = timed(r.timings.wear,
                    [&] { return run_wear(scene_, model, r.normal, *r.cycle, control ? *control : WearControl{}); });
   // A wear run stopped on request ends the run there: stress and crack would show a state it did not reach.
   const bool reached = !(r.wear && r.wear->interrupted);
   const CycleStage* cycle = r.cycle ? &*r.cycle : nullptr;
   const WearStage* wear = r.wear ? &*r.wear : nullptr;
-  if (scene_.stress && reached)
+  if (setup.effects.stress && reached)
     r.stress_maps = timed(r.timings.stress, [&] {
       auto maps = run_stress(scene_, model, r.normal, cycle, wear);
-      if (cycle)  // the fatigue measures from the maps' top and bottom
+      if (setup.effects.fatigue)  // the fatigue measures from the maps' top and bottom
         r.fatigue = run_fatigue(scene_, model.grid, final_phases(scene_, r.normal, cycle, wear).front(), maps,
                                 *cycle, wear);
       return maps;
     });
-  if (scene_.crack && reached) {
+  if (setup.effects.crack && reached) {
     r.crack_x = crack_position(*scene_.crack, r.normal);
     r.sifs = timed(r.timings.crack, [&] { return run_crack(scene_, model, r.normal, cycle, wear); });
   }
   r.timings.total = seconds_since(t0);
   r.warnings = result_warnings(scene_, r);
   return r;
+}
+
+const std::vector<StageOutputs>& stage_outputs() {
+  using nlohmann::json;
+  static const std::vector<StageOutputs> stages = {
+      {"tangential", &Timings::tangential, [](const RunResult& r) { return r.cycle.has_value(); },
+       [](const Scene& s, const RunResult& r, json& j) { j["cycle"] = summarise_cycle(s, *r.cycle); },
+       [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
+         write_cycle(s, r.normal, *r.cycle, out, w);
+       }},
+      {"wear", &Timings::wear, [](const RunResult& r) { return r.wear.has_value(); },
+       [](const Scene& s, const RunResult& r, json& j) { j["wear"] = summarise_wear(s, *r.wear); },
+       [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
+         write_wear(s, r.normal, *r.wear, out, w);
+       }},
+      {"stress", &Timings::stress, [](const RunResult& r) { return !r.stress_maps.empty(); },
+       [](const Scene& s, const RunResult& r, json& j) {
+         j["stress"] = summarise_stress(s, r.stress_maps, r.wear ? &*r.wear : nullptr);
+       },
+       [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
+         write_stress(s, r.stress_maps, out, w);
+       }},
+      {nullptr, nullptr, [](const RunResult& r) { return r.fatigue.has_value(); },  // SWT and Ruiz, within stress
+       [](const Scene&, const RunResult& r, json& j) { add_fatigue_summary(j["stress"], *r.fatigue); },
+       [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
+         write_fatigue(s, r.normal, *r.cycle, *r.fatigue, out, w);
+       }},
+      {"crack", &Timings::crack, [](const RunResult& r) { return !r.sifs.empty(); },
+       [](const Scene& s, const RunResult& r, json& j) { j["crack"] = summarise_crack(s, r.sifs, r.crack_x); },
+       [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
+         write_crack(s, r.sifs, r.crack_x, r.wear.has_value(), out, w);
+       }},
+  };
+  return stages;
 }
 
 nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
@@ -75,21 +110,14 @@ nlohmann::json make_summary(const Scene& scene, const RunResult& result) {
   summary["warnings"] = json::array();
   for (const Warning& w : result.warnings) summary["warnings"].push_back({{"code", w.code}, {"message", w.message}});
   if (scene.tangential_implied) summary["effects_implied"] = {{"tangential", "needed by wear"}};
-  // Each stage that ran: its name in effects_run, its time, its part.
-  auto add = [&](const char* effect, const std::optional<double>& seconds, const char* key, json part) {
-    summary["effects_run"].push_back(effect);
-    timings[effect] = *seconds;
-    summary[key] = std::move(part);
-  };
-  const WearStage* wear = result.wear ? &*result.wear : nullptr;
-  if (result.cycle) add("tangential", result.timings.tangential, "cycle", summarise_cycle(scene, *result.cycle));
-  if (!result.stress_maps.empty()) {
-    add("stress", result.timings.stress, "stress", summarise_stress(scene, result.stress_maps, wear));
-    if (result.fatigue) add_fatigue_summary(summary["stress"], *result.fatigue);
+  for (const StageOutputs& stage : stage_outputs()) {
+    if (!stage.ran(result)) continue;
+    if (stage.effect) {
+      summary["effects_run"].push_back(stage.effect);
+      timings[stage.effect] = *(result.timings.*stage.seconds);
+    }
+    stage.summarise(scene, result, summary);
   }
-  if (!result.sifs.empty())
-    add("crack", result.timings.crack, "crack", summarise_crack(scene, result.sifs, result.crack_x));
-  if (wear) add("wear", result.timings.wear, "wear", summarise_wear(scene, *wear));
   return summary;
 }
 

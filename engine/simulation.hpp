@@ -1,6 +1,8 @@
-// One scene, run: the model set up once (engine/setup.hpp), then each stage the scene asks for, in order: normal,
-// cycle, wear, stress (with its fatigue measures), crack. Simulation::run() reads like the method; each stage lives
-// in an engine/*_stage.* module, and the physics in contact/ and wear/.
+// One scene, run: the setup resolved once (engine/setup.hpp: the model, the plan of the load cycle, the effects), then
+// each stage the scene asks for, in order: normal, cycle, wear, stress (with its fatigue measures), crack.
+// Simulation::run() reads like the method; each stage lives in an engine/*_stage.* module, the physics in contact/
+// and wear/. stage_outputs() lists what each stage adds to summary.json and to the output folder, which
+// make_summary() and write_results() (engine/output.hpp) loop over: a new effect adds its line there.
 #pragma once
 
 #include <optional>
@@ -12,6 +14,7 @@
 #include "engine/crack_stage.hpp"
 #include "engine/cycle_stage.hpp"
 #include "engine/fatigue_stage.hpp"
+#include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
@@ -51,6 +54,18 @@ class Simulation {
  private:
   Scene scene_;
 };
+
+// What a stage that ran adds to the summary and to the output folder.
+struct StageOutputs {
+  const char* effect;                       // its name in summary.json's effects_run and timings; null for none
+  std::optional<double> Timings::*seconds;  // its wall time (with effect)
+  bool (*ran)(const RunResult&);
+  void (*summarise)(const Scene&, const RunResult&, nlohmann::json& summary);  // its part of summary.json
+  void (*write)(const Scene&, const RunResult&, OutputFolder&, Written&);       // its CSVs and plots
+};
+
+// The stages after the normal one (whose part is the summary's top level and contact.csv), in the order they run.
+const std::vector<StageOutputs>& stage_outputs();
 
 // summary.json (SCENES.md's contract).
 nlohmann::json make_summary(const Scene& scene, const RunResult& result);

@@ -61,12 +61,11 @@ void WearContact::restore_counts(const json& j) {
   implicit_iterations = j.at("implicit_iterations").get<long>();
 }
 
-AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model) : WearContact(scene, model) {
-  const double f = *scene.friction;
-  tilt_ = model.pair.bulk_strain(scene.bulk_stress) / f;
-  corrective_load_ = scene.P - scene.Q_max() / f;
-  if (!(corrective_load_ > 0.0))
-    throw UnsupportedError(sliding_under_force_control(scene.Q_max(), f * scene.P));
+AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model, const CyclicLoad& load)
+    : WearContact(scene, model) {
+  tilt_ = load.bulk_strain / load.f;
+  corrective_load_ = load.P - load.Q_max / load.f;
+  if (!(corrective_load_ > 0.0)) throw UnsupportedError(sliding_under_force_control(load.Q_max, load.f * load.P));
 }
 
 void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
@@ -118,20 +117,14 @@ IncrementalSlipOptions incremental_options(const Scene& scene) {
   return o;
 }
 
-CyclicLoad incremental_load(const Scene& scene, const Model& model) {
-  const double strain = model.pair.bulk_strain(scene.bulk_stress);
-  const bool displacement = scene.control == LoadControl::displacement;
-  return {scene.P, displacement ? 0.0 : scene.Q_max(), *scene.friction, strain, displacement ? *scene.delta : 0.0};
-}
-
 }  // namespace
 
-IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x,
-                                                       double reference_depth)
+IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model,
+                                                       const CycleStage& cycle)
     : WearContact(scene, model),
       slip_(*model.kernel, incremental_options(scene)),
-      datum_(model.grid, model.pair, reference_x, reference_depth),
-      load_(incremental_load(scene, model)) {
+      datum_(model.grid, model.pair, cycle.reference_x, cycle.reference_depth),
+      load_(cycle.plan.load) {
   if (!scene.history.empty())
     throw UnsupportedError("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
                            "repeated between fixed limits of Q or of the displacement");
@@ -182,8 +175,9 @@ void IncrementalContactResponse::restore(const json& j) {
 }
 
 std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const CycleStage& cycle) {
-  if (cycle.ran != TangentialRoute::incremental) return std::make_unique<AnalogyContactResponse>(scene, model);
-  return std::make_unique<IncrementalContactResponse>(scene, model, cycle.reference_x, cycle.reference_depth);
+  if (cycle.ran != TangentialRoute::incremental)
+    return std::make_unique<AnalogyContactResponse>(scene, model, cycle.plan.load);
+  return std::make_unique<IncrementalContactResponse>(scene, model, cycle);
 }
 
 }  // namespace fretwear

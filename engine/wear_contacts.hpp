@@ -80,7 +80,8 @@ class WearContact : public wear::ContactResponse {
 // The steady-cycle slip and stick zone on a worn profile, by the analogy route (similar bodies, constant P).
 class AnalogyContactResponse : public WearContact {
  public:
-  AnalogyContactResponse(const Scene& scene, const Model& model);
+  // load: the cyclic load (CyclePlan::load, or cyclic_load()).
+  AnalogyContactResponse(const Scene& scene, const Model& model, const CyclicLoad& load);
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return q_top_; }
   double Q_top() const override { return scene_.Q_max(); }
@@ -109,8 +110,8 @@ class AnalogyContactResponse : public WearContact {
 // solves are warm-started, and save()/restore() carry those starts.
 class IncrementalContactResponse : public WearContact {
  public:
-  // reference_x, reference_depth: the datum (m), as CycleStage has them.
-  IncrementalContactResponse(const Scene& scene, const Model& model, double reference_x, double reference_depth);
+  // The cycle stage's load (its plan) and datum.
+  IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle);
   // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return cycle_.q_top; }

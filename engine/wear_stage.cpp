@@ -228,7 +228,7 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
     return a;
   }
   // The stick zones of the first cycle, located to sub-cell accuracy (one per run of the corrective contact).
-  AnalogyContactResponse contact(scene, model);
+  AnalogyContactResponse contact(scene, model, cyclic_load(scene, model.pair));
   wear::CycleResponse first;
   try {
     contact.respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);

@@ -45,7 +45,7 @@ class FailingAboveShift : public wear::ContactResponse {
 TEST_CASE("an implicit step whose solve does not converge is retried with a quarter of the jump") {
   const Scene s = test::hertz_wear(1e5, 0.5, 1e4, 256);
   const Model m = make_model(s);
-  AnalogyContactResponse real(s, m);
+  AnalogyContactResponse real(s, m, cyclic_load(s, m.pair));
   wear::CycleResponse r;
   real.respond(std::vector<double>(m.grid.n, 0.0), r);
   const double s_max = *std::max_element(r.s.begin(), r.s.end());
@@ -72,7 +72,7 @@ TEST_CASE("an implicit step whose solve does not converge is retried with a quar
   CHECK(*std::min_element(w.begin(), w.end()) >= 0.0);  // no trace of the failed iterates' −1 pressures
 
   // The same step taken by a stepper whose solves never fail gives the same wear.
-  AnalogyContactResponse fresh(s, m);
+  AnalogyContactResponse fresh(s, m, cyclic_load(s, m.pair));
   wear::ImplicitWearStepper reference(c, 0.1);
   std::vector<double> w_ref(m.grid.n, 0.0);
   double N_ref = 0.0, dN_ref = 62.5;
@@ -83,7 +83,7 @@ TEST_CASE("an implicit step whose solve does not converge is retried with a quar
 TEST_CASE("below one cycle the implicit stepper gives up, the engine names the solve and its residual") {
   const Scene s = test::hertz_wear(1e5, 0.5, 1e4, 256);
   const Model m = make_model(s);
-  AnalogyContactResponse real(s, m);
+  AnalogyContactResponse real(s, m, cyclic_load(s, m.pair));
   FailingAboveShift contact(real, 0.0);  // every solve fails
   wear::ImplicitWearStepper stepper(1e-12, 1e-3);
   std::vector<double> w(m.grid.n, 0.0);

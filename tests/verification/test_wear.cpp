@@ -163,7 +163,7 @@ TEST_CASE("no checkerboard: ten implicit jumps of 1 to 1000 times the explicit s
   REQUIRE(probe.stability_limit > 0.0);
   for (double jump : {1.0, 10.0, 100.0, 1000.0}) {
     CAPTURE(jump);
-    AnalogyContactResponse contact(s, m);
+    AnalogyContactResponse contact(s, m, cyclic_load(s, m.pair));
     wear::ImplicitWearStepper stepper(probe.rate_coefficient, 1e-3);
     std::vector<double> w(m.grid.n, 0.0);
     for (int k = 0; k < 10; ++k) stepper.euler_step(contact, w, jump * probe.stability_limit);

@@ -702,6 +702,55 @@ void parse_record(const json* rec, Reader& rw, WearEffect& effect) {
   }
 }
 
+// effects.wear's coefficient of the law: both bodies together (k or alpha, with pad_fraction), or each body's
+// (k_pad and k_specimen, or alpha_pad and alpha_specimen; PHYSICS.md, "per-body wear"): then the wear of both
+// together runs at their sum and the pad's share is its own over the sum.
+void parse_wear_coefficients(Reader& rw, const json& w, WearEffect& effect) {
+  const bool archard = effect.law == wear::Law::archard;
+  const std::string key = archard ? "k" : "alpha", other = archard ? "alpha" : "k";
+  const std::string pad = key + "_pad", specimen = key + "_specimen";
+  for (const std::string& o : {other, other + "_pad", other + "_specimen"})
+    if (w.contains(o)) {
+      rw.find(o);
+      rw.problem("effects.wear." + o,
+                 fmt::format("belongs to the other law; the {} law takes \"{}\" (or \"{}\" and \"{}\")",
+                             to_string(effect.law), key, pad, specimen));
+    }
+  const Bound coefficient = within(spans::kMinWearCoefficient, spans::kMaxWearCoefficient, "a wear coefficient",
+                                   "1/Pa", true);
+  const bool together = w.contains(key), each = w.contains(pad) || w.contains(specimen);
+  if (!each) {
+    effect.coefficient = rw.number(key, std::nullopt, coefficient).value_or(1e-15);
+    return;
+  }
+  effect.per_body = true;
+  if (together) {
+    rw.find(key);
+    rw.problem("effects.wear." + key, fmt::format("given with \"{}\"/\"{}\"; give either \"{}\" (both bodies "
+                                                  "together, with pad_fraction) or \"{}\" and \"{}\"",
+                                                  pad, specimen, key, pad, specimen));
+  }
+  if (w.contains("pad_fraction")) {
+    rw.find("pad_fraction");
+    rw.problem("effects.wear.pad_fraction", fmt::format("given with \"{}\" and \"{}\", which set the pad's share "
+                                                        "({} / ({} + {})); leave it out",
+                                                        pad, specimen, pad, pad, specimen));
+  }
+  const Bound one_body{[coefficient](double v) { return v == 0.0 || coefficient.ok(v); },
+                       "0 (the body does not wear) or " + coefficient.allowed};
+  const auto c_pad = rw.number(pad, std::nullopt, one_body), c_specimen = rw.number(specimen, std::nullopt, one_body);
+  if (!c_pad || !c_specimen) return;
+  effect.coefficient = *c_pad + *c_specimen;
+  if (!(effect.coefficient > 0.0)) {
+    rw.problem("effects.wear." + pad, fmt::format("{} and {} are both 0: nothing wears; give a positive "
+                                                  "coefficient to at least one body, or leave out effects.wear",
+                                                  pad, specimen));
+    return;
+  }
+  effect.coefficient_pad = *c_pad, effect.coefficient_specimen = *c_specimen;
+  effect.pad_fraction = *c_pad / effect.coefficient;
+}
+
 // effects.wear: the law and its coefficient, the share of the pad, the cycles, the stepper, the records.
 void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
   if (const json* w = r.object("wear", false)) {
@@ -717,23 +766,16 @@ void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
       }
     }
     if (!law) {
-      rw.find("k"), rw.find("alpha");  // which of them belongs is unknown until the law is: not unknown keys
+      // Which coefficients belong is unknown until the law is: not unknown keys.
+      for (const char* k : {"k", "alpha", "k_pad", "k_specimen", "alpha_pad", "alpha_specimen"}) rw.find(k);
     } else {
       effect.law = *law;
-      const char* key = effect.law == wear::Law::archard ? "k" : "alpha";
-      const char* other = effect.law == wear::Law::archard ? "alpha" : "k";
-      effect.coefficient = rw.number(key, std::nullopt, within(spans::kMinWearCoefficient, spans::kMaxWearCoefficient,
-                                                                "a wear coefficient", "1/Pa", true))
-                               .value_or(1e-15);
-      if (w->contains(other)) {
-        rw.find(other);
-        rw.problem(fmt::format("effects.wear.{}", other),
-                   fmt::format("belongs to the other law; the {} law takes \"{}\"", to_string(effect.law), key));
-      }
+      parse_wear_coefficients(rw, *w, effect);
     }
-    effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
-                                                          "a share in [0, 1]"})
-                              .value_or(0.5);
+    if (!effect.per_body)
+      effect.pad_fraction = rw.number("pad_fraction", 0.5, {[](double v) { return v >= 0.0 && v <= 1.0; },
+                                                            "a share in [0, 1]"})
+                                .value_or(0.5);
     const auto cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
                                                            "a whole number of cycles from 1 to 1e12"});
     effect.cycles = cycles.value_or(1e12);  // records are checked against the cycles only when they are valid
@@ -1267,12 +1309,16 @@ json Scene::to_json() const {
       j["effects"]["crack"]["at"] = to_string(crack->at);
   }
   if (wear) {
-    json w = {{"law", to_string(wear->law)},
-              {wear->law == wear::Law::archard ? "k" : "alpha", wear->coefficient},
-              {"pad_fraction", wear->pad_fraction},
-              {"cycles", wear->cycles},
-              {"stepper", to_string(wear->stepper)},
-              {"tolerance", wear->tolerance}};
+    const std::string key = wear->law == wear::Law::archard ? "k" : "alpha";
+    json w = {{"law", to_string(wear->law)}, {"cycles", wear->cycles}};
+    if (wear->per_body) {
+      w[key + "_pad"] = wear->coefficient_pad;
+      w[key + "_specimen"] = wear->coefficient_specimen;
+    } else {
+      w[key] = wear->coefficient;
+      w["pad_fraction"] = wear->pad_fraction;
+    }
+    w.update(json{{"stepper", to_string(wear->stepper)}, {"tolerance", wear->tolerance}});
     if (wear->record_count > 0)
       w["record"] = wear->record_count;
     else

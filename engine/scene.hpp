@@ -80,8 +80,12 @@ std::string stepper_words();
 // effects.wear: the slip zones worn cycle after cycle.
 struct WearEffect {
   wear::Law law = wear::Law::archard;  // archard (k) or energy (alpha)
-  double coefficient = 0.0;         // k or alpha (1/Pa)
+  double coefficient = 0.0;         // k or alpha (1/Pa), both bodies together
   double pad_fraction = 0.5;        // share of the wear on the pad
+  // Given per body (k_pad and k_specimen, or alpha_pad and alpha_specimen): coefficient is their sum and
+  // pad_fraction the pad's over it.
+  bool per_body = false;
+  double coefficient_pad = 0.0, coefficient_specimen = 0.0;  // 1/Pa
   double cycles = 0.0;              // a whole number of cycles
   WearStepper stepper = WearStepper::implicit;
   double tolerance = 1e-3;          // relative, on the worn profile, per step

@@ -518,6 +518,8 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
       {"coefficient", e.coefficient},
       {"rate_coefficient", w.rate_coefficient},
       {"pad_fraction", e.pad_fraction},
+      {"coefficient_pad", e.per_body ? e.coefficient_pad : e.pad_fraction * e.coefficient},
+      {"coefficient_specimen", e.per_body ? e.coefficient_specimen : (1.0 - e.pad_fraction) * e.coefficient},
       {"stepper", to_string(e.stepper)},
       {"tolerance", e.tolerance},
       {"cycles", last.cycles},

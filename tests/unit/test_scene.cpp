@@ -267,6 +267,44 @@ TEST_CASE("the wear effect: law and its coefficient, cycles, stepper, tolerance,
   CHECK(reports(j, "friction", {"effects.wear"}));
 }
 
+TEST_CASE("per-body wear coefficients set the sum and the pad's share, and exclude the shared form") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["effects"] = {{"wear", {{"k_pad", 1e-15}, {"k_specimen", 3e-15}, {"cycles", 1e6}}}};
+  const Scene s = parse_scene(j);
+  REQUIRE(s.wear);
+  CHECK(s.wear->per_body);
+  CHECK(s.wear->coefficient == 4e-15);
+  CHECK(s.wear->pad_fraction == 0.25);
+  const json resolved = s.to_json();
+  CHECK(resolved["effects"]["wear"]["k_pad"] == 1e-15);
+  CHECK(resolved["effects"]["wear"]["k_specimen"] == 3e-15);
+  CHECK_FALSE(resolved["effects"]["wear"].contains("k"));
+  CHECK_FALSE(resolved["effects"]["wear"].contains("pad_fraction"));
+  CHECK(parse_scene(resolved).to_json() == resolved);
+
+  j["effects"]["wear"] = {{"law", "energy"}, {"alpha_pad", 0}, {"alpha_specimen", 2e-15}, {"cycles", 10}};
+  const Scene e = parse_scene(j);
+  CHECK(e.wear->coefficient == 2e-15);
+  CHECK(e.wear->pad_fraction == 0.0);
+
+  j["effects"]["wear"] = {{"k", 1e-15}, {"k_pad", 1e-15}, {"k_specimen", 1e-15}, {"pad_fraction", 0.3},
+                          {"cycles", 10}};
+  CHECK(reports(j, "effects.wear.k", {"either"}));
+  CHECK(reports(j, "effects.wear.pad_fraction", {"leave it out"}));
+  j["effects"]["wear"] = {{"k_pad", 1e-15}, {"cycles", 10}};
+  CHECK(reports(j, "effects.wear.k_specimen", {"missing"}));
+  j["effects"]["wear"] = {{"k_pad", 0}, {"k_specimen", 0}, {"cycles", 10}};
+  CHECK(reports(j, "effects.wear.k_pad", {"both 0"}));
+  j["effects"]["wear"] = {{"k_pad", -1e-15}, {"k_specimen", 1e-15}, {"alpha_pad", 1e-15}, {"cycles", 10}};
+  CHECK(reports(j, "effects.wear.k_pad", {"0 (the body does not wear)"}));
+  CHECK(reports(j, "effects.wear.alpha_pad", {"other law"}));
+  j["effects"]["wear"] = {{"law", "abrasive"}, {"k_pad", 1e-15}, {"k_specimen", 1e-15}, {"cycles", 10}};
+  const std::vector<std::string> bad_law = problems(j);
+  CHECK(bad_law.size() == 1);  // the law, and not also its coefficients as unknown keys
+}
+
 TEST_CASE("tangential loads without the tangential effect are errors, not ignored") {
   json j = good();
   j["friction"] = 0.5;

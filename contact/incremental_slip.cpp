@@ -514,11 +514,19 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   // The search for the Q of one displacement-controlled increment.
   struct DeltaSearch {
     DeltaSearch(double target, double strain, double strain_prev, int in_cycle, int increment,
-                const IncrementState& from)
-        : x_t(target), eps_t(strain), eps_0(strain_prev), cycle(in_cycle), k(increment), start(from), trial(from) {}
+                const IncrementState& from, const std::vector<double>& p_from)
+        : x_t(target),
+          eps_t(strain),
+          eps_0(strain_prev),
+          cycle(in_cycle),
+          k(increment),
+          start(from),
+          trial(from),
+          p_start(p_from) {}
     double x_t, eps_t, eps_0;     // the target δ (m); the bulk strain at the increment's end and at its start
     int cycle, k;
     IncrementState start, trial;  // the increment's start; the solve of the last evaluation
+    std::vector<double> p_start;  // the pressure at the increment's start (it moves only when β ≠ 0)
     SolveSummary total;           // the solves so far, summed
     int evaluations = 0;
     double last = 0.0;            // Q of the last evaluation (N/m)
@@ -619,9 +627,6 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
   if (displacement && !datum)
     throw InputError("incremental slip: displacement control needs a reference datum (the δ it prescribes)");
   const bool coupled = coupling && coupling->beta != 0.0;
-  if (coupled && displacement)
-    throw UnsupportedError("incremental slip: displacement control of dissimilar bodies (Dundurs beta = " +
-                           fmt::format("{:.4g}", coupling->beta) + ") is not supported yet; use force control");
   if (coupled && int(coupling->g0.size()) != n)
     throw InputError("incremental slip: the coupled solve needs the initial gap on the grid");
   if (!displacement && Q >= f * P)
@@ -762,14 +767,14 @@ SolveSummary IncrementalSlipSolver::AmplitudeRun::step(double x_t, int cycle, in
   SolveSummary s;
   double Qt = x_t;
   extra_ = 0.0;
-  if (coupled_) {
-    s = coupled_increment({Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, cycle, k);
-    check(s, cycle, k, Qt);
-  } else if (displacement_) {
+  if (displacement_) {
     const double delta_prev = delta_now();
     std::tie(Qt, s) = displacement_increment(x_t, cycle, k);
     const double dQ = Qt - Q_prev_;
     if (extra_ == 0.0 && dQ != 0.0 && (x_t - delta_prev) / dQ > 0.0) compliance_ = (x_t - delta_prev) / dQ;
+  } else if (coupled_) {
+    s = coupled_increment({Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, cycle, k);
+    check(s, cycle, k, Qt);
   } else {
     s = solver_.solve_increment(p_, f_, {Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, state_);
     check(s, cycle, k, Qt);
@@ -798,7 +803,7 @@ void IncrementalSlipSolver::AmplitudeRun::check(const SolveSummary& s, int cycle
 // and the Illinois false position find the Q whose δ is x_t; past ±f P (every cell at ±f p) the bodies slide.
 std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::displacement_increment(double x_t, int cycle,
                                                                                              int k) {
-  DeltaSearch search(x_t, strain_at(x_t), strain_at(x_prev_), cycle, k, state_);
+  DeltaSearch search(x_t, strain_at(x_t), strain_at(x_prev_), cycle, k, state_, p_);
   const double tol = 10.0 * options_.tolerance * std::abs(x_t - x_prev_);
   const double Qt = std::clamp(Q_prev_ + (x_t - x_prev_) / compliance_, -capacity_, capacity_);
   const double ft = delta_miss(search, Qt);
@@ -827,10 +832,19 @@ std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::displacemen
 
 double IncrementalSlipSolver::AmplitudeRun::delta_miss(DeltaSearch& search, double Q) {
   search.last = Q;
-  search.trial.q = state_.q;  // warm start: the last evaluation (q and u = K q agree)
-  search.trial.u = state_.u;
-  const SolveSummary s =
-      solver_.solve_bounded(lo_, hi_, {Q, Q_prev_, search.eps_t, search.eps_0}, search.start.u, search.trial);
+  SolveSummary s;
+  if (coupled_) {
+    // β ≠ 0: the coupled increment to Q from the increment's start (its traction and pressure); the normal solves
+    // stay warm-started from the last evaluation's pressure.
+    state_ = search.start;
+    p_ = search.p_start;
+    s = coupled_increment({Q, Q_prev_, search.eps_t, search.eps_0}, search.cycle, search.k);
+    search.trial = state_;
+  } else {
+    search.trial.q = state_.q;  // warm start: the last evaluation (q and u = K q agree)
+    search.trial.u = state_.u;
+    s = solver_.solve_bounded(lo_, hi_, {Q, Q_prev_, search.eps_t, search.eps_0}, search.start.u, search.trial);
+  }
   search.total.iterations += s.iterations;
   search.total.seconds += s.seconds;
   search.total.residual = std::max(search.total.residual, s.residual);

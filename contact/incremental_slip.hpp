@@ -78,8 +78,10 @@
 // given contact with q = 0, as if P had been applied without friction (with friction, loading P alone on dissimilar
 // bodies builds a shear with a central stick zone, Spence 1975, which is not modelled here); the first cycle after
 // that first loading is then not yet the steady one (tests/verification/test_cycle_dissimilar.cpp: 0.1 % in energy
-// for steel on titanium), the second is. Displacement control and load histories with β ≠ 0 are not built
-// (UnsupportedError).
+// for steel on titanium), the second is. Under displacement control with β ≠ 0 each evaluation of the δ search
+// above is such a coupled increment to its Q, from the increment's start (traction and pressure), so δ(Q) keeps its
+// meaning and the search is unchanged; past the stick limit the bodies slide as for β = 0. Load histories with
+// β ≠ 0 are not built (solve_history has no coupling).
 #pragma once
 
 #include <complex>

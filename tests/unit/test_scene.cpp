@@ -315,7 +315,7 @@ TEST_CASE("tangential loads without the tangential effect are errors, not ignore
   CHECK(reports(j, "load.bulk_stress", {"no effect uses it"}));
 }
 
-TEST_CASE("dissimilar bodies take the incremental route: the analogy, displacement control and wear are refused") {
+TEST_CASE("dissimilar bodies take the incremental route: the analogy, a load history and wear are refused") {
   json j = good();
   j["materials"] = {{"pad", {{"E", 2e11}, {"nu", 0.3}}}, {"specimen", {{"E", 7e10}, {"nu", 0.33}}}};
   j["friction"] = 0.5;
@@ -326,6 +326,11 @@ TEST_CASE("dissimilar bodies take the incremental route: the analogy, displaceme
   CHECK(reports(j, "materials", {"beta", "analogy", "needs similar bodies"}));
   j["effects"] = {{"tangential", json::object()}, {"wear", {{"law", "archard"}, {"k", 1e-17}, {"cycles", 1e6}}}};
   CHECK(reports(j, "materials", {"beta", "effects.wear", "not supported yet"}));
+  j["effects"] = {{"tangential", json::object()}};
+  j["load"] = {{"P", 1e5}, {"control", "displacement"}, {"delta", 1e-6}};
+  CHECK_NOTHROW(parse_scene(j));
+  j["load"] = {{"P", 1e5}, {"history", {{0, 1e5, 2e4, 0}, {1, 1e5, -2e4, 0}, {2, 1e5, 2e4, 0}}}};
+  CHECK(reports(j, "materials", {"beta", "load.history", "not supported yet"}));
 }
 
 TEST_CASE("names must make a folder name") {

@@ -470,7 +470,8 @@ class IncrementalSlipSolver::Run {
   IncrementalResult result() { return std::move(result_); }
 
  protected:
-  Run(const IncrementalSlipSolver& solver, const ContactState& contact, const ReferenceDatum* datum);
+  Run(const IncrementalSlipSolver& solver, const ContactState& contact, const ReferenceDatum* datum,
+      const NormalCoupling* coupling);
   virtual ~Run() = default;
 
   // The loads at the end of the last increment, and δ there (needs the datum).
@@ -483,6 +484,11 @@ class IncrementalSlipSolver::Run {
   CycleResult begin_cycle();
   // The end of an increment within the cycle: the largest |Q|, the loop point and the slip.
   void end_increment(CycleResult& r, double Q);
+  // β ≠ 0: the increment by block Gauss–Seidel sweeps between the normal problem under the load P and the tangential
+  // one with the bounds ±f p, from the pressure p and state_ (the increment's start); p, lo, hi and state_ end as
+  // the increment's end. Returns the tangential solves' summary (not converged: the caller throws).
+  SolveSummary coupled_increment(double P, double f, const SlipIncrement& inc, std::vector<double>& p,
+                                 std::vector<double>& lo, std::vector<double>& hi, int cycle, int k);
 
   const IncrementalSlipSolver& solver_;
   const HalfPlaneKernel& kernel_;
@@ -497,6 +503,21 @@ class IncrementalSlipSolver::Run {
   std::vector<LoopPoint> first_loading_;
   std::vector<double> w_, w_min_, w_max_;  // the slip per cell over the cycle being marched, and its extremes (m)
   IncrementalResult result_;
+  const NormalCoupling* coupling_;
+  const bool coupled_;          // β ≠ 0
+  const CouplingKernel S_;
+  const NormalSolver coupled_normal_;  // the normal solves of the coupled increments
+  const double A_beta_;
+  ContactState normal_state_;   // the last coupled normal solve: the next one's warm start
+
+ private:
+  // A sweep's normal half: p for the gap g0 − A β S q under the load P, warm-started from the last p.
+  void coupled_pressure(std::span<const double> q, double P, const SlipIncrement& inc, std::vector<double>& p,
+                        int cycle, int k);
+  // A sweep's tangential half: q with the bounds ±f p and the coupling slip A β S (p − p_prev) of the pressure.
+  SolveSummary coupled_traction(double f, const SlipIncrement& inc, std::span<const double> p,
+                                std::span<const double> p_prev, std::span<const double> u_prev,
+                                std::vector<double>& lo, std::vector<double>& hi, IncrementState& trial);
 };
 
 // solve(): under constant P the controlled quantity x (Q, or δ under displacement control) cycles 0 → +X → −X → +X
@@ -550,13 +571,6 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   // The Illinois false position on the bracket [a, b] of δ(Q) − x_t, to |δ(Q) − x_t| ≤ tol.
   std::pair<double, SolveSummary> false_position(DeltaSearch& search, double a, double fa, double b, double fb,
                                                  double tol);
-  // β ≠ 0: the increment by block Gauss–Seidel sweeps between the normal and the tangential problems.
-  SolveSummary coupled_increment(const SlipIncrement& inc, int cycle, int k);
-  // A sweep's normal half: p for the gap g0 − A β S q under the load P, warm-started from the last p.
-  void coupled_pressure(std::span<const double> q, const SlipIncrement& inc, int cycle, int k);
-  // A sweep's tangential half: q with the bounds ±f p and the coupling slip A β S (p − p_prev) of the pressure.
-  SolveSummary coupled_traction(const SlipIncrement& inc, std::span<const double> p_prev,
-                                std::span<const double> u_prev, IncrementState& trial);
   // Gross slip where the bodies slid rigidly beyond the stick limit, reverse slip where some cell is held at −f p at
   // the top of the cycle.
   void classify(CycleResult& r, double sliding) const;
@@ -564,8 +578,6 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   const double f_, P_, bulk_strain_;
   const bool displacement_;
   const double X_;              // the amplitude of x: Q (N/m) or δ (m)
-  const NormalCoupling* coupling_;
-  const bool coupled_;          // β ≠ 0
   const int m_;
   std::vector<double> p_;       // the pressure (Pa); it moves over the cycle only when β ≠ 0
   std::vector<double> lo_, hi_;
@@ -573,10 +585,6 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   double Q_prev_ = 0.0, x_prev_ = 0.0;  // at the end of the last increment
   double extra_ = 0.0;          // the rigid sliding of the last increment beyond the stick limit (m)
   double compliance_;           // dδ/dQ of the last increment (m²/N): the first guess of the next one's Q
-  const CouplingKernel S_;
-  const NormalSolver normal_;
-  const double A_beta_;
-  ContactState normal_state_;
 };
 
 // solve_history(): force control through the points of a load history, the pressure that of the normal problem at
@@ -584,7 +592,7 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
 class IncrementalSlipSolver::HistoryRun : public Run {
  public:
   HistoryRun(const IncrementalSlipSolver& solver, const ContactState& contact, const CyclicLoad& load,
-             std::span<const double> g0, const ReferenceDatum* datum);
+             std::span<const double> g0, const ReferenceDatum* datum, const NormalCoupling* coupling);
   // The first loading, from Q = 0, ε = 0 under the contact's P to the first point, in m/4 increments.
   void first_loading();
   // One steady cycle through the points into the result.
@@ -641,7 +649,8 @@ IncrementalResult IncrementalSlipSolver::solve(const ContactState& contact, cons
 }
 
 IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& contact, const CyclicLoad& load,
-                                                       std::span<const double> g0, const ReferenceDatum* datum) const {
+                                                       std::span<const double> g0, const ReferenceDatum* datum,
+                                                       const NormalCoupling* coupling) const {
   const auto& H = load.history;
   if (H.size() < 2 || int(g0.size()) != kernel_.grid().n)
     throw InputError("incremental slip: a load history needs two points or more and the initial gap on the grid");
@@ -652,14 +661,16 @@ IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& conta
                                     "the bodies slide, and under force control the slip is not determined",
                                     std::abs(pt.Q), load.f * pt.P, pt.t));
 
-  HistoryRun run(*this, contact, load, g0, datum);
+  if (coupling && coupling->beta != 0.0 && int(coupling->g0.size()) != kernel_.grid().n)
+    throw InputError("incremental slip: the coupled solve needs the initial gap on the grid");
+  HistoryRun run(*this, contact, load, g0, datum, coupling);
   run.first_loading();
   for (int cycle = 1; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
   return run.result();
 }
 
 IncrementalSlipSolver::Run::Run(const IncrementalSlipSolver& solver, const ContactState& contact,
-                                const ReferenceDatum* datum)
+                                const ReferenceDatum* datum, const NormalCoupling* coupling)
     : solver_(solver),
       kernel_(solver.kernel_),
       options_(solver.options_),
@@ -667,9 +678,15 @@ IncrementalSlipSolver::Run::Run(const IncrementalSlipSolver& solver, const Conta
       n_(grid_.n),
       h_(grid_.h()),
       datum_(datum),
-      D0_(datum ? datum->relative_displacement(std::vector<double>(n_, 0.0), contact.p) : 0.0) {
+      D0_(datum ? datum->relative_displacement(std::vector<double>(n_, 0.0), contact.p) : 0.0),
+      coupling_(coupling),
+      coupled_(coupling && coupling->beta != 0.0),
+      S_(grid_),
+      coupled_normal_(kernel_, options_.normal),
+      A_beta_(coupled_ ? kernel_.A() * coupling->beta : 0.0) {
   state_.q.assign(n_, 0.0);
   state_.u.assign(n_, 0.0);
+  normal_state_.p = contact.p;
 }
 
 double IncrementalSlipSolver::Run::delta(std::span<const double> p, double eps) const {
@@ -708,26 +725,20 @@ void IncrementalSlipSolver::Run::end_increment(CycleResult& r, double Q) {
 IncrementalSlipSolver::AmplitudeRun::AmplitudeRun(const IncrementalSlipSolver& solver, const ContactState& contact,
                                                   const CyclicLoad& load, const ReferenceDatum* datum,
                                                   const NormalCoupling* coupling)
-    : Run(solver, contact, datum),
+    : Run(solver, contact, datum, coupling),
       f_(load.f),
       P_(load.P),
       bulk_strain_(load.bulk_strain),
       displacement_(load.delta > 0.0),
       X_(displacement_ ? load.delta : load.Q_max),
-      coupling_(coupling),
-      coupled_(coupling && coupling->beta != 0.0),
       m_(options_.increments_per_cycle),
       p_(contact.p),
       lo_(n_),
       hi_(n_),
-      compliance_(kernel_.A()),
-      S_(grid_),
-      normal_(kernel_, options_.normal),
-      A_beta_(coupled_ ? kernel_.A() * coupling->beta : 0.0) {
+      compliance_(kernel_.A()) {
   traction_bounds(p_, f_, lo_, hi_);
   for (int i = 0; i < n_; ++i)
     if (hi_[i] > 0.0) capacity_ += h_ * hi_[i];
-  normal_state_.p = p_;
 }
 
 void IncrementalSlipSolver::AmplitudeRun::first_loading() {
@@ -773,7 +784,7 @@ SolveSummary IncrementalSlipSolver::AmplitudeRun::step(double x_t, int cycle, in
     const double dQ = Qt - Q_prev_;
     if (extra_ == 0.0 && dQ != 0.0 && (x_t - delta_prev) / dQ > 0.0) compliance_ = (x_t - delta_prev) / dQ;
   } else if (coupled_) {
-    s = coupled_increment({Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, cycle, k);
+    s = coupled_increment(P_, f_, {Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, p_, lo_, hi_, cycle, k);
     check(s, cycle, k, Qt);
   } else {
     s = solver_.solve_increment(p_, f_, {Qt, Q_prev_, strain_at(Qt), strain_at(Q_prev_)}, state_);
@@ -838,7 +849,7 @@ double IncrementalSlipSolver::AmplitudeRun::delta_miss(DeltaSearch& search, doub
     // stay warm-started from the last evaluation's pressure.
     state_ = search.start;
     p_ = search.p_start;
-    s = coupled_increment({Q, Q_prev_, search.eps_t, search.eps_0}, search.cycle, search.k);
+    s = coupled_increment(P_, f_, {Q, Q_prev_, search.eps_t, search.eps_0}, p_, lo_, hi_, search.cycle, search.k);
     search.trial = state_;
   } else {
     search.trial.q = state_.q;  // warm start: the last evaluation (q and u = K q agree)
@@ -894,23 +905,25 @@ std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::false_posit
 
 // A sweep k: p_k from q_{k−1}, then q_k from p_k; the increment ends when a sweep changes neither traction by more
 // than coupling_tolerance · max p_k.
-SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_increment(const SlipIncrement& inc, int cycle, int k) {
-  const std::vector<double> p_prev = p_, u_prev = state_.u;
-  std::vector<double> p_last = p_, q_last = state_.q;
+SolveSummary IncrementalSlipSolver::Run::coupled_increment(double P, double f, const SlipIncrement& inc,
+                                                           std::vector<double>& p, std::vector<double>& lo,
+                                                           std::vector<double>& hi, int cycle, int k) {
+  const std::vector<double> p_prev = p, u_prev = state_.u;
+  std::vector<double> p_last = p, q_last = state_.q;
   IncrementState trial = state_;
   SolveSummary total;
   double change = std::numeric_limits<double>::infinity();
   int sweeps = 0;
-  while (change > options_.coupling_tolerance * *std::max_element(p_.begin(), p_.end())) {
+  while (change > options_.coupling_tolerance * *std::max_element(p.begin(), p.end())) {
     if (++sweeps > options_.max_coupling_sweeps)
       throw ConvergenceError(fmt::format(
           "incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal and tangential solves of "
           "dissimilar bodies (beta = {:.4g}) still change the traction by {:.3g} of the peak pressure after {} "
           "sweeps (coupling tolerance {:.3g})",
-          where(cycle, k), inc.Q_prev, inc.Q, coupling_->beta, change / *std::max_element(p_.begin(), p_.end()),
+          where(cycle, k), inc.Q_prev, inc.Q, coupling_->beta, change / *std::max_element(p.begin(), p.end()),
           options_.max_coupling_sweeps, options_.coupling_tolerance));
-    coupled_pressure(trial.q, inc, cycle, k);
-    const SolveSummary ts = coupled_traction(inc, p_prev, u_prev, trial);
+    coupled_pressure(trial.q, P, inc, p, cycle, k);
+    const SolveSummary ts = coupled_traction(f, inc, p, p_prev, u_prev, lo, hi, trial);
     total.iterations += ts.iterations;
     total.seconds += ts.seconds;
     total.residual = ts.residual;
@@ -918,8 +931,8 @@ SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_increment(const SlipIn
     if (!ts.converged()) return total;
     change = 0.0;
     for (int i = 0; i < n_; ++i)
-      change = std::max({change, std::abs(p_[i] - p_last[i]), std::abs(trial.q[i] - q_last[i])});
-    p_last = p_;
+      change = std::max({change, std::abs(p[i] - p_last[i]), std::abs(trial.q[i] - q_last[i])});
+    p_last = p;
     q_last = trial.q;
   }
   state_ = std::move(trial);
@@ -928,32 +941,33 @@ SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_increment(const SlipIn
   return total;
 }
 
-void IncrementalSlipSolver::AmplitudeRun::coupled_pressure(std::span<const double> q, const SlipIncrement& inc,
-                                                           int cycle, int k) {
+void IncrementalSlipSolver::Run::coupled_pressure(std::span<const double> q, double P, const SlipIncrement& inc,
+                                                  std::vector<double>& p, int cycle, int k) {
   std::vector<double> coupling_u(n_), gap(n_);
   S_.apply(q, coupling_u, A_beta_);
   for (int i = 0; i < n_; ++i) gap[i] = coupling_->g0[i] - coupling_u[i];
-  const SolveSummary ns = normal_.solve(gap, P_, normal_state_);
+  const SolveSummary ns = coupled_normal_.solve(gap, P, normal_state_);
   if (!ns.converged())
-    throw ConvergenceError(fmt::format("incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal "
-                                       "solve stopped ({}) with residual {:.3g}",
-                                       where(cycle, k), inc.Q_prev, inc.Q, to_string(ns.termination), ns.residual));
-  p_ = normal_state_.p;
+    throw ConvergenceError(fmt::format("incremental slip: {} (P {:.6g}, Q from {:.6g} to {:.6g} N/m): the coupled "
+                                       "normal solve stopped ({}) with residual {:.3g}",
+                                       where(cycle, k), P, inc.Q_prev, inc.Q, to_string(ns.termination),
+                                       ns.residual));
+  p = normal_state_.p;
 }
 
 // Cells that left the contact drop their traction, as under a load history; the pressure's coupling slip enters
 // through the previous displacement, u_prev − A β S (p − p_prev).
-SolveSummary IncrementalSlipSolver::AmplitudeRun::coupled_traction(const SlipIncrement& inc,
-                                                                   std::span<const double> p_prev,
-                                                                   std::span<const double> u_prev,
-                                                                   IncrementState& trial) {
-  traction_bounds(p_, f_, lo_, hi_);
-  drop_separated(kernel_, hi_, trial);
+SolveSummary IncrementalSlipSolver::Run::coupled_traction(double f, const SlipIncrement& inc,
+                                                          std::span<const double> p, std::span<const double> p_prev,
+                                                          std::span<const double> u_prev, std::vector<double>& lo,
+                                                          std::vector<double>& hi, IncrementState& trial) {
+  traction_bounds(p, f, lo, hi);
+  drop_separated(kernel_, hi, trial);
   std::vector<double> dp(n_), coupling_u(n_), u_eff(n_);
-  for (int i = 0; i < n_; ++i) dp[i] = p_[i] - p_prev[i];
+  for (int i = 0; i < n_; ++i) dp[i] = p[i] - p_prev[i];
   S_.apply(dp, coupling_u, A_beta_);
   for (int i = 0; i < n_; ++i) u_eff[i] = u_prev[i] - coupling_u[i];
-  return solver_.solve_bounded(lo_, hi_, inc, u_eff, trial);
+  return solver_.solve_bounded(lo, hi, inc, u_eff, trial);
 }
 
 void IncrementalSlipSolver::AmplitudeRun::classify(CycleResult& r, double sliding) const {
@@ -981,8 +995,8 @@ void IncrementalSlipSolver::AmplitudeRun::classify(CycleResult& r, double slidin
 
 IncrementalSlipSolver::HistoryRun::HistoryRun(const IncrementalSlipSolver& solver, const ContactState& contact,
                                               const CyclicLoad& load, std::span<const double> g0,
-                                              const ReferenceDatum* datum)
-    : Run(solver, contact, datum),
+                                              const ReferenceDatum* datum, const NormalCoupling* coupling)
+    : Run(solver, contact, datum, coupling),
       f_(load.f),
       m_(options_.increments_per_cycle),
       g0_(g0),
@@ -1061,8 +1075,14 @@ void IncrementalSlipSolver::HistoryRun::cycle(int c) {
   for (int j = 0; j < int(cycle_targets_.size()); ++j) {
     r.solves.push_back(step(cycle_targets_[j], c, j + 1));
     end_increment(r, prev_.Q);
-    if (j == j_top_) r.q_top = state_.q, hi_top = hi_;
-    if (j == j_bottom_) r.q_bottom = state_.q;
+    if (j == j_top_) {
+      r.q_top = state_.q, hi_top = hi_;
+      if (coupled_) result_.p_top = p_now_;
+    }
+    if (j == j_bottom_) {
+      r.q_bottom = state_.q;
+      if (coupled_) result_.p_bottom = p_now_;
+    }
     if (j == j_unloaded_) r.q_unloaded = state_.q, hi_unloaded = hi_;
     if (j == j_reloaded_) r.q_reloaded = state_.q;
   }
@@ -1079,12 +1099,18 @@ void IncrementalSlipSolver::HistoryRun::cycle(int c) {
 // At a new P the bounds ±f p change: cells that separate drop their traction (the drop is part of the increment's
 // Δq), and q above its new bound is clamped by the increment's projection.
 SolveSummary IncrementalSlipSolver::HistoryRun::step(const Target& t, int cycle, int k) {
-  const std::vector<double>& p = pressure_at(t.P);
-  traction_bounds(p, f_, lo_, hi_);
-  p_now_ = p;
-  const std::vector<double> u_prev = state_.u;
-  drop_separated(kernel_, hi_, state_);
-  const SolveSummary s = solver_.solve_bounded(lo_, hi_, {t.Q, prev_.Q, t.eps, prev_.eps}, u_prev, state_);
+  const SlipIncrement inc{t.Q, prev_.Q, t.eps, prev_.eps};
+  SolveSummary s;
+  if (coupled_) {  // β ≠ 0: the pressure under t.P solved with the shear, sweep by sweep
+    s = coupled_increment(t.P, f_, inc, p_now_, lo_, hi_, cycle, k);
+  } else {
+    const std::vector<double>& p = pressure_at(t.P);
+    traction_bounds(p, f_, lo_, hi_);
+    p_now_ = p;
+    const std::vector<double> u_prev = state_.u;
+    drop_separated(kernel_, hi_, state_);
+    s = solver_.solve_bounded(lo_, hi_, inc, u_prev, state_);
+  }
   count(s);
   if (!s.converged())
     throw ConvergenceError(fmt::format(

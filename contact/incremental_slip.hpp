@@ -80,8 +80,9 @@
 // that first loading is then not yet the steady one (tests/verification/test_cycle_dissimilar.cpp: 0.1 % in energy
 // for steel on titanium), the second is. Under displacement control with β ≠ 0 each evaluation of the δ search
 // above is such a coupled increment to its Q, from the increment's start (traction and pressure), so δ(Q) keeps its
-// meaning and the search is unchanged; past the stick limit the bodies slide as for β = 0. Load histories with
-// β ≠ 0 are not built (solve_history has no coupling).
+// meaning and the search is unchanged; past the stick limit the bodies slide as for β = 0. Under a load history with
+// β ≠ 0 each increment is a coupled increment under its own P (the normal half of a sweep solves for that load),
+// and the pressure at the history's top and bottom is reported as under a constant P.
 #pragma once
 
 #include <complex>
@@ -163,14 +164,15 @@ class IncrementalSlipSolver {
   // cycle in the gross_slip regime with no fields, as the analogy route does. With a datum (it must outlive the
   // call) each cycle carries its fretting loop. Throws ConvergenceError naming the cycle, the increment, Q and the
   // residual if an increment does not converge.
-  // With a coupling whose β ≠ 0 the pressure is solved with the shear at every increment (force control only; the
-  // coupling's g0 must outlive the call); ConvergenceError also when the sweeps do not settle.
+  // With a coupling whose β ≠ 0 the pressure is solved with the shear at every increment (the coupling's g0 must
+  // outlive the call); ConvergenceError also when the sweeps do not settle.
   IncrementalResult solve(const ContactState& contact, const CyclicLoad& load, const ReferenceDatum* datum = nullptr,
                           const NormalCoupling* coupling = nullptr) const;
   // A load history (load.history non-empty; see the header): g0 is the initial gap per cell, for the normal solves
   // at each distinct P(t), warm-started; `contact` is the normal solution under load.P, where the first loading starts.
+  // With a coupling whose β ≠ 0, the pressure under each increment's P is solved with the shear, as in solve().
   IncrementalResult solve_history(const ContactState& contact, const CyclicLoad& load, std::span<const double> g0,
-                                  const ReferenceDatum* datum = nullptr) const;
+                                  const ReferenceDatum* datum = nullptr, const NormalCoupling* coupling = nullptr) const;
 
   // One increment from `state` (q and u = K q of the previous increment, or empty for q = 0). p: the pressure per
   // cell (Pa); f the friction coefficient. Needs Σ f p h ≥ |Q|.

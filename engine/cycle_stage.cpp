@@ -168,7 +168,7 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
   const IncrementalSlipSolver solver(*model.kernel, options);
   const NormalCoupling coupling{plan.beta, model.g0};
   const bool history = !load.history.empty();
-  const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum)
+  const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum, &coupling)
                                       : solver.solve(normal.state, load, &datum, &coupling);
   stage.ran = TangentialRoute::incremental;
   stage.route = plan.analogy_first() ? "incremental (auto: the analogy found reverse slip)" : plan.incremental_because;

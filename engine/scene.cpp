@@ -953,9 +953,6 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (given.history)
-        problems.push_back(dissimilar + "; the incremental route solves them under force or displacement control "
-                                        "between fixed limits, and load.history with beta != 0 is not supported yet");
       if (s.wear || s.stress || s.crack)
         problems.push_back(dissimilar + "; effects.wear, effects.stress and effects.crack use the pressure of the "
                                         "uncoupled normal solve and the analogy's cycle, and with beta != 0 are not "

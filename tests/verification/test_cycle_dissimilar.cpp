@@ -436,3 +436,36 @@ TEST_CASE("dissimilar: displacement control is continuous as beta tends to 0, an
   CHECK(g.result.sliding_amplitude > 0.0);
   CHECK_FALSE(g.result.stick_zone);
 }
+
+// A load history of dissimilar bodies: each increment is a coupled increment under its own P. The in-phase cycle
+// written as a history takes the same increments as force control, so it must give the same cycle to the coupled
+// solves' tolerance (coupling_tolerance 1e-8 of the peak pressure: kHistoryAgreement leaves two decades).
+TEST_CASE("dissimilar: the in-phase cycle as a load history is force control's cycle, and P may vary") {
+  constexpr double kHistoryAgreement = 1e-6;
+  const Scene force = dissimilar_cycle(kTitanium, 512);
+  const double Q = force.Q_max();
+  Scene history = force;
+  history.Q_ratio.reset();
+  history.history = {{0.0, kP, Q, 0.0}, {1.0, kP, -Q, 0.0}, {2.0, kP, Q, 0.0}};
+  const Model m = make_model(force);
+  const NormalResult n = solve_normal(force, m);
+  const CycleStage a = solve_cycle(force, m, n);
+  const CycleStage b = solve_cycle(history, m, n);
+  CHECK(b.route.find("incremental (auto: load history) [beta = -0.05156") == 0);
+  CHECK(b.result.dissipated_energy == test::rel(a.result.dissipated_energy, kHistoryAgreement));
+  CHECK(max_abs_diff(b.result.q_top, a.result.q_top) < kHistoryAgreement * max_of(a.p_top));
+  CHECK(max_abs_diff(b.p_top, a.p_top) < kHistoryAgreement * max_of(a.p_top));
+  CHECK(max_abs_diff(b.p_bottom, a.p_bottom) < kHistoryAgreement * max_of(a.p_top));
+
+  // P varying out of phase with Q: the coupled pressure carries each increment's P; at the top (Q largest, P = kP)
+  // it carries kP, and the cycle closes (the second cycle repeats the first steady one).
+  history.history = {{0.0, kP, Q, 0.0}, {1.0, 0.7 * kP, 0.0, 0.0}, {2.0, kP, -Q, 0.0}, {3.0, 1.3 * kP, 0.0, 0.0},
+                     {4.0, kP, Q, 0.0}};
+  const CycleStage c = solve_cycle(history, m, n);
+  REQUIRE(c.p_top.size() == std::size_t(m.grid.n));
+  double top = 0.0;
+  for (double p : c.p_top) top += m.grid.h() * p;
+  CHECK(top == test::rel(kP, 1e-10));
+  CHECK(c.result.regime == Regime::partial_slip);
+  CHECK(c.result.dissipated_energy > 0.0);
+}

@@ -108,9 +108,18 @@ void print_warnings(const std::vector<Warning>& warnings) {
 void print_report(const Scene& scene, const RunResult& result, const nlohmann::json& summary, bool verbose) {
   auto v = [](const nlohmann::json& j) { return j.get<double>(); };
   const auto& c = summary["contact"];
-  std::cout << fmt::format("{}: contact [{:.6e}, {:.6e}] m in {} zone(s), p_max {:.6e} Pa ({})\n", scene.name,
-                           v(c["extent"][0]), v(c["extent"][1]), c["zones"].size(), v(c["p_max"]),
-                           result.normal.summary.brief());
+  // Intervals [l, r] in m, each zone of a list on its own.
+  auto zones = [&v](const nlohmann::json& list) {
+    std::string out;
+    for (const auto& z : list) out += fmt::format("{}[{:.6e}, {:.6e}]", out.empty() ? "" : ", ", v(z[0]), v(z[1]));
+    return out + " m";
+  };
+  if (c["zones"].size() > 1)
+    std::cout << fmt::format("{}: contact in {} zones {}, p_max {:.6e} Pa ({})\n", scene.name, c["zones"].size(),
+                             zones(c["zones"]), v(c["p_max"]), result.normal.summary.brief());
+  else
+    std::cout << fmt::format("{}: contact [{:.6e}, {:.6e}] m in 1 zone, p_max {:.6e} Pa ({})\n", scene.name,
+                             v(c["extent"][0]), v(c["extent"][1]), v(c["p_max"]), result.normal.summary.brief());
   if (verbose) {
     const auto& g = summary["grid"];
     std::cout << fmt::format("  grid: {} cells of {:.4e} m over [{:.6e}, {:.6e}] m (window from {})\n",
@@ -126,8 +135,8 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
     std::cout << fmt::format("  cycle ({}, {} route): Q/fP = {:.4g}", cy["regime"].get<std::string>(),
                              cy["route"].get<std::string>(), v(cy["Q_over_fP"]));
     if (!cy["stick_zone"].is_null())
-      std::cout << fmt::format(", stick zone [{:.6e}, {:.6e}] m, slip range {:.4e} m, energy {:.4e} J/m",
-                               v(cy["stick_zone"][0]), v(cy["stick_zone"][1]), v(cy["slip_max"]),
+      std::cout << fmt::format(", stick zone{} {}, slip range {:.4e} m, energy {:.4e} J/m",
+                               cy["stick_zones"].size() > 1 ? "s" : "", zones(cy["stick_zones"]), v(cy["slip_max"]),
                                v(cy["dissipated_energy"]));
     if (cy.contains("message")) std::cout << "\n  " << cy["message"].get<std::string>();
     std::cout << "\n";

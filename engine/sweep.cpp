@@ -57,10 +57,12 @@ std::string word(const json& v) {
 }
 
 // The summary's scalars worth a column.
-const char* kColumns[] = {"contact.p_max",      "contact.extent",          "cycle.regime",
-                          "cycle.stick_zone",   "cycle.dissipated_energy", "cycle.slip_max",
-                          "wear.worn_area",     "wear.max_depth",          "wear.fraction_of_asymptote",
-                          "crack.K_I_max",      "timings.total"};
+// Several contact or stick zones appear one pair each in contact.zones and cycle.stick_zones.
+const char* kColumns[] = {"contact.p_max",      "contact.extent",          "contact.zones",
+                          "cycle.regime",       "cycle.stick_zone",        "cycle.stick_zones",
+                          "cycle.dissipated_energy", "cycle.slip_max",     "wear.worn_area",
+                          "wear.max_depth",     "wear.fraction_of_asymptote", "crack.K_I_max",
+                          "timings.total"};
 
 json get(const json& j, const std::string& dotted) {
   const json* node = &j;
@@ -72,14 +74,21 @@ json get(const json& j, const std::string& dotted) {
   return *node;
 }
 
-// The fretting map's value of a run: the stick zone's share of the contact (0 in gross slip), or the worn area when
-// the scene wears.
+// The total width of a list of zones [[l, r], ...] (m).
+double total_width(const json& zones) {
+  double w = 0.0;
+  for (const json& z : zones) w += z[1].get<double>() - z[0].get<double>();
+  return w;
+}
+
+// The fretting map's value of a run: the stick zones' share of the contact zones, zone by zone (0 in gross slip; the
+// gaps between several zones count in neither), or the worn area when the scene wears.
 double map_value(const json& s, bool wears) {
   if (wears) return get(s, "wear.worn_area").is_number() ? get(s, "wear.worn_area").get<double>() : NAN;
-  const json stick = get(s, "cycle.stick_zone"), extent = get(s, "contact.extent");
-  if (!extent.is_array()) return NAN;
+  const json stick = get(s, "cycle.stick_zones"), zones = get(s, "contact.zones");
+  if (!zones.is_array() || zones.empty()) return NAN;
   if (!stick.is_array()) return 0.0;
-  return (stick[1].get<double>() - stick[0].get<double>()) / (extent[1].get<double>() - extent[0].get<double>());
+  return total_width(stick) / total_width(zones);
 }
 
 }  // namespace
@@ -183,7 +192,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   // The fretting map over the first two varied keys (a line over one).
   if (base_scene.plots && !variations.empty()) {
     const bool wears = base_scene.wear.has_value();
-    const std::string what = wears ? "worn area (m²)" : "stick zone / contact width";
+    const std::string what = wears ? "worn area (m²)" : "stick zones / contact zones, in width";
     std::string dat;
     const std::size_t n0 = variations[0].values.size();
     for (std::size_t k = 0; k < result.runs.size(); ++k) {

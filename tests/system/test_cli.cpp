@@ -183,3 +183,42 @@ TEST_CASE("run reports each stage that ran, and --verbose adds how it was solved
   REQUIRE_MESSAGE(quiet.exited(kDone), quiet.describe());
   CHECK(quiet.all().empty());
 }
+
+TEST_CASE("several contact and stick zones are reported zone by zone on stdout and in the sweep's map") {
+  // Two cylinders 0.4 mm apart under one pad (paper 002's two-zone case): two contacts, a stick zone in each.
+  const json scene = {{"name", "two"},
+                      {"materials", {{"both", {{"E", 2e11}, {"nu", 0.3}}}}},
+                      {"profile", {{"type", "envelope"},
+                                   {"terms", {{{"type", "cylinder"}, {"R", 0.01}, {"offset_x", -0.2e-3}},
+                                              {{"type", "cylinder"}, {"R", 0.01}, {"offset_x", 0.2e-3}}}}}},
+                      {"friction", 0.5},
+                      {"load", {{"P", 1e5}, {"Q", {{"ratio", 0.5}}}}},
+                      {"grid", {{"cells", 512}}},
+                      {"effects", {{"tangential", json::object()}}}};  // with plots: the sweep draws its map
+  Scratch s;
+  s.write("two.json", scene.dump());
+  const Outcome r = s.fretwear({"run", "two.json"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(r.out.find("contact in 2 zones [") != std::string::npos);
+  CHECK(r.out.find("stick zones [") != std::string::npos);
+  const json summary = json::parse(std::ifstream(s.work / "output" / "two" / "summary.json"));
+  REQUIRE(summary["cycle"]["stick_zones"].size() == 2);
+
+  // The sweep's map value is the stick zones' share of the contact zones' width, the gap between them left out.
+  const Outcome sw = s.fretwear({"sweep", "two.json", "--vary", "load.Q.ratio=0.5", "-q"});
+  REQUIRE_MESSAGE(sw.exited(kDone), sw.describe());
+  double stick = 0.0, contact = 0.0;
+  for (const auto& z : summary["cycle"]["stick_zones"]) stick += z[1].get<double>() - z[0].get<double>();
+  for (const auto& z : summary["contact"]["zones"]) contact += z[1].get<double>() - z[0].get<double>();
+  std::ifstream map(s.work / "output" / "two" / "sweep" / "sweep_map.dat");
+  double ratio = 0.0, unused = 0.0, value = 0.0;
+  map >> ratio >> unused >> value;
+  REQUIRE(map.good());
+  CHECK(value == fretwear::test::rel(stick / contact, 1e-12));
+  const std::string csv_header = [&] {
+    std::string h;
+    std::getline(std::ifstream(s.work / "output" / "two" / "sweep" / "sweep.csv"), h);
+    return h;
+  }();
+  CHECK(csv_header.find("cycle.stick_zones") != std::string::npos);
+}

@@ -376,6 +376,8 @@ constexpr std::pair<WearStepper, const char*> kStepperWords[] = {{WearStepper::i
                                                                  {WearStepper::explicit_capped, "explicit"},
                                                                  {WearStepper::cycle_by_cycle, "cycle_by_cycle"}};
 // A position x is given as a number, not a word.
+constexpr std::pair<GrowthMode, const char*> kGrowthModeWords[] = {{GrowthMode::mode_I, "I"},
+                                                                   {GrowthMode::equivalent, "equivalent"}};
 constexpr std::pair<CrackPosition, const char*> kCrackEdgeWords[] = {{CrackPosition::trailing_edge, "trailing_edge"},
                                                                      {CrackPosition::leading_edge, "leading_edge"}};
 
@@ -424,6 +426,16 @@ WearStepper stepper_from_string(std::string_view word) {
   return from_word<WearStepper>(kStepperWords, word, "a stepper");
 }
 std::string stepper_words() { return words_list<WearStepper>(kStepperWords); }
+
+std::string to_string(GrowthMode mode) { return word_of<GrowthMode>(kGrowthModeWords, mode); }
+GrowthMode growth_mode_from_string(std::string_view word) {
+  return from_word<GrowthMode>(kGrowthModeWords, word, "a growth mode");
+}
+
+double LifeEffect::a_initial() const {
+  if (growth && growth->a_initial) return *growth->a_initial;
+  return initiation ? initiation->critical_distance : 0.0;
+}
 
 std::string to_string(CrackPosition at) {
   return at == CrackPosition::x ? "x" : word_of<CrackPosition>(kCrackEdgeWords, at);
@@ -816,6 +828,125 @@ void parse_stress(Reader& r, Scene& s, std::vector<std::string>& problems) {
   }
 }
 
+// effects.life.initiation: the strain-life constants and the critical distance.
+std::optional<LifeInitiation> parse_initiation(Reader& r, std::vector<std::string>& problems) {
+  const json* i = r.object("initiation", false);
+  if (!i) return std::nullopt;
+  Reader ri(*i, "effects.life.initiation", problems);
+  LifeInitiation e;
+  const auto sigma_f = ri.number("sigma_f", std::nullopt, within(1e6, 1e11, "a fatigue strength coefficient", "Pa"));
+  const auto b = ri.number("b", std::nullopt, {[](double v) { return v > -1.0 && v < 0.0; },
+                                               "a fatigue strength exponent in (-1, 0)"});
+  const auto eps_f = ri.number("eps_f", std::nullopt, {[](double v) { return v > 0.0 && v <= 10.0; },
+                                                       "a fatigue ductility coefficient in (0, 10]"});
+  const auto c = ri.number("c", std::nullopt, {[](double v) { return v > -2.0 && v < 0.0; },
+                                               "a fatigue ductility exponent in (-2, 0)"});
+  const Bound distance = length("a critical distance");
+  const auto ell = ri.number("critical_distance", 0.0, {[distance](double v) { return v == 0.0 || distance.ok(v); },
+                                                        "0 (the point method) or " + distance.allowed});
+  ri.finish();
+  if (!sigma_f || !b || !eps_f || !c || !ell) return std::nullopt;
+  e.sigma_f = *sigma_f, e.b = *b, e.eps_f = *eps_f, e.c = *c, e.critical_distance = *ell;
+  return e;
+}
+
+// effects.life.growth: Paris' constants, the threshold, the lengths, the short-crack correction and the mode.
+std::optional<LifeGrowth> parse_growth(Reader& r, std::vector<std::string>& problems) {
+  const json* gj = r.object("growth", false);
+  if (!gj) return std::nullopt;
+  Reader rg(*gj, "effects.life.growth", problems);
+  LifeGrowth g;
+  bool ok = true;
+  if (const auto law = rg.string("law", "paris", "\"paris\""); law && *law != "paris") {
+    rg.problem("effects.life.growth.law", fmt::format("\"{}\" is not a growth law; use \"paris\"", *law));
+    ok = false;
+  }
+  const auto C = rg.number("C", std::nullopt, within(1e-60, 1e-3, "a Paris coefficient", "m/cycle per (Pa m^0.5)^m"));
+  const auto m = rg.number("m", std::nullopt, {[](double v) { return v > 0.0 && v <= 20.0; },
+                                               "a Paris exponent in (0, 20]"});
+  const auto dK_th = rg.number("dK_th", 0.0, within(0.0, 1e9, "a threshold", "Pa m^0.5"));
+  const auto a_final = rg.number("a_final", std::nullopt, length("a final crack length"));
+  std::optional<double> a_initial;
+  if (rg.find("a_initial")) a_initial = rg.number("a_initial", std::nullopt, length("an initial crack length"));
+  std::optional<double> K_c;
+  if (rg.find("K_c")) K_c = rg.number("K_c", std::nullopt, within(1e3, 1e10, "a fracture toughness", "Pa m^0.5"));
+  const auto short_crack = rg.string("short_crack", "none", "\"none\" or \"el_haddad\"");
+  if (short_crack && *short_crack != "none" && *short_crack != "el_haddad") {
+    rg.problem("effects.life.growth.short_crack",
+               fmt::format("\"{}\" is not a short-crack correction; use \"none\" or \"el_haddad\"", *short_crack));
+    ok = false;
+  }
+  g.el_haddad = short_crack && *short_crack == "el_haddad";
+  if (g.el_haddad) {
+    const auto limit = rg.number("fatigue_limit", std::nullopt, within(1e3, 1e11, "a fatigue limit (stress range)", "Pa"));
+    if (limit) g.fatigue_limit = *limit;
+    ok = ok && limit;
+    if (dK_th && *dK_th == 0.0) {
+      rg.problem("effects.life.growth.dK_th", "is 0 with short_crack \"el_haddad\", which scales the threshold; give "
+                                              "the long-crack threshold (Pa m^0.5)");
+      ok = false;
+    }
+  } else if (rg.find("fatigue_limit")) {
+    rg.problem("effects.life.growth.fatigue_limit", "given without short_crack \"el_haddad\", which uses it; add "
+                                                    "\"short_crack\": \"el_haddad\" or remove it");
+    ok = false;
+  }
+  if (const auto mode = rg.string("mode", "I", words_list<GrowthMode>(kGrowthModeWords))) {
+    try {
+      g.mode = growth_mode_from_string(*mode);
+    } catch (const InputError& e) {
+      rg.problem("effects.life.growth.mode", e.what());
+      ok = false;
+    }
+  }
+  rg.finish();
+  if (a_initial && a_final && !(*a_final > *a_initial)) {
+    rg.problem("effects.life.growth.a_final", fmt::format("{} m is not longer than a_initial = {} m; the crack grows "
+                                                          "from a_initial to a_final",
+                                                          *a_final, *a_initial));
+    ok = false;
+  }
+  if (!ok || !C || !m || !dK_th || !a_final || (rg.find("a_initial") && !a_initial) || (rg.find("K_c") && !K_c))
+    return std::nullopt;
+  g.C = *C, g.m = *m, g.dK_th = *dK_th, g.a_final = *a_final, g.a_initial = a_initial, g.K_c = K_c;
+  return g;
+}
+
+// effects.life: initiation and/or growth, and the cycles past which a life is a runout.
+void parse_life(Reader& r, Scene& s, std::vector<std::string>& problems) {
+  const json* l = r.object("life", false);
+  if (!l) return;
+  Reader rl(*l, "effects.life", problems);
+  LifeEffect effect;
+  const std::size_t before = problems.size();
+  effect.initiation = parse_initiation(rl, problems);
+  effect.growth = parse_growth(rl, problems);
+  effect.cycles_max = rl.number("cycles_max", 1e9, {[](double v) { return v >= 1.0 && v <= 1e15; },
+                                                    "a number of cycles from 1 to 1e15"})
+                          .value_or(1e9);
+  rl.finish();
+  if (problems.size() != before) return;
+  if (!rl.find("initiation") && !rl.find("growth")) {
+    rl.problem("effects.life", "has neither \"initiation\" nor \"growth\"; give one or both");
+    return;
+  }
+  if (effect.growth && !effect.growth->a_initial) {
+    const double ell = effect.initiation ? effect.initiation->critical_distance : 0.0;
+    if (ell <= 0.0) {
+      rl.problem("effects.life.growth.a_initial", "missing, and there is no critical distance to start from; give "
+                                                  "the initial crack length (m)");
+      return;
+    }
+    if (!(effect.growth->a_final > ell)) {
+      rl.problem("effects.life.growth.a_final", fmt::format("{} m is not longer than the initial length, the "
+                                                            "critical distance {} m",
+                                                            effect.growth->a_final, ell));
+      return;
+    }
+  }
+  s.life = effect;
+}
+
 // effects.crack: where, at what angle, how long, the quadrature and the faces' friction.
 void parse_crack(Reader& r, Scene& s, std::vector<std::string>& problems) {
   if (const json* c = r.object("crack", false)) {
@@ -878,6 +1009,7 @@ void parse_effects(Reader& top, Scene& s, Given& given, std::vector<std::string>
   parse_wear(r, s, problems);
   parse_stress(r, s, problems);
   parse_crack(r, s, problems);
+  parse_life(r, s, problems);
   r.finish();
 }
 
@@ -898,6 +1030,9 @@ void parse_output(Reader& top, Scene& s, std::vector<std::string>& problems) {
 
 // What the effects need of the load, the friction and the bodies, and what is given that no effect uses.
 void check_needs(const Scene& s, const Given& given, std::vector<std::string>& problems) {
+  if (s.life)
+    problems.push_back("effects.life: its keys are valid, but the life stage is not supported yet (it is being "
+                       "built); run without effects.life");
   if (given.effects_unknown) {
     // reported above; what the effects need is checked once they are readable
   } else if (s.tangential) {
@@ -1296,6 +1431,23 @@ json Scene::to_json() const {
   if (tangential)
     j["effects"]["tangential"] = {{"route", to_string(tangential->route)}, {"increments", tangential->increments}};
   if (stress) j["effects"]["stress"] = {{"nx", stress->nx}, {"ny", stress->ny}, {"depth", stress->depth}};
+  if (life) {
+    json l = {{"cycles_max", life->cycles_max}};
+    if (life->initiation) {
+      const LifeInitiation& i = *life->initiation;
+      l["initiation"] = {{"sigma_f", i.sigma_f}, {"b", i.b}, {"eps_f", i.eps_f}, {"c", i.c},
+                         {"critical_distance", i.critical_distance}};
+    }
+    if (life->growth) {
+      const LifeGrowth& g = *life->growth;
+      json gj = {{"law", "paris"}, {"C", g.C}, {"m", g.m}, {"dK_th", g.dK_th}, {"a_initial", life->a_initial()},
+                 {"a_final", g.a_final}, {"short_crack", g.el_haddad ? "el_haddad" : "none"}, {"mode", to_string(g.mode)}};
+      if (g.K_c) gj["K_c"] = *g.K_c;
+      if (g.el_haddad) gj["fatigue_limit"] = g.fatigue_limit;
+      l["growth"] = gj;
+    }
+    j["effects"]["life"] = l;
+  }
   if (crack) {
     j["effects"]["crack"] = {{"angle_deg", crack->angle_deg}, {"lengths", crack->lengths},
                              {"quadrature", crack->quadrature}, {"face_friction", crack->face_friction}};

@@ -59,6 +59,32 @@ struct CrackEffect {
   double face_friction = 0.0;        // Coulomb coefficient between the crack faces where they touch
 };
 
+// effects.life (PHYSICS.md, "Fretting-fatigue life"; contact/fatigue_life.hpp).
+struct LifeInitiation {              // Smith–Watson–Topper by Basquin–Coffin–Manson
+  double sigma_f = 0.0, b = 0.0;     // σf′ (Pa), the strength exponent (< 0)
+  double eps_f = 0.0, c = 0.0;       // εf′, the ductility exponent (< 0)
+  double critical_distance = 0.0;    // ℓ (m): 0 the point method at the surface, > 0 the line method
+};
+enum class GrowthMode { mode_I, equivalent };
+std::string to_string(GrowthMode mode);  // "I", "equivalent"
+GrowthMode growth_mode_from_string(std::string_view word);  // throws InputError naming the words
+struct LifeGrowth {                  // Paris, with its threshold and El Haddad's short-crack correction
+  double C = 0.0, m = 0.0;           // da/dN = C ΔK^m (m per cycle, ΔK in Pa·m^0.5)
+  double dK_th = 0.0;                // Pa·m^0.5
+  std::optional<double> a_initial;   // m; absent: the critical distance
+  double a_final = 0.0;              // m
+  std::optional<double> K_c;         // Pa·m^0.5
+  bool el_haddad = false;
+  double fatigue_limit = 0.0;        // Δσ_e (Pa), with el_haddad
+  GrowthMode mode = GrowthMode::mode_I;
+};
+struct LifeEffect {
+  std::optional<LifeInitiation> initiation;
+  std::optional<LifeGrowth> growth;  // at least one of the two
+  double cycles_max = 1e9;
+  double a_initial() const;          // the growth's first length (m)
+};
+
 // effects.stress
 struct StressEffect {
   int nx = 161, ny = 81;     // map points across and into the specimen
@@ -113,6 +139,7 @@ struct Scene {
   std::optional<WearEffect> wear;
   std::optional<StressEffect> stress;
   std::optional<CrackEffect> crack;
+  std::optional<LifeEffect> life;
 
   // Q at the top of the cycle (N/m), from the amplitude or the ratio (the largest |Q| of a history); 0 without a
   // tangential load.

@@ -586,3 +586,63 @@ TEST_CASE("absurd magnitudes that crashed or completed with nonsense are refused
   j["materials"]["both"]["E"] = 1e-310;
   CHECK(reports(j, "materials.both.E", {"is not allowed", "[1000, 1e13] Pa"}));
 }
+
+namespace {
+
+json life_scene() {
+  json j = good();
+  j["friction"] = 0.5;
+  j["load"]["Q"] = {{"ratio", 0.5}};
+  j["effects"] = {{"tangential", json::object()},
+                  {"life", {{"initiation", {{"sigma_f", 1.817e9}, {"b", -0.08}, {"eps_f", 0.35}, {"c", -0.52},
+                                            {"critical_distance", 2e-5}}},
+                            {"growth", {{"law", "paris"}, {"C", 5e-30}, {"m", 3.0}, {"dK_th", 2e6},
+                                        {"a_final", 1e-3}, {"K_c", 6e7}, {"short_crack", "el_haddad"},
+                                        {"fatigue_limit", 6e8}, {"mode", "I"}}},
+                            {"cycles_max", 1e9}}}};
+  return j;
+}
+
+}  // namespace
+
+TEST_CASE("the life effect's keys: SCENES.md's example is valid, and the stage is not yet built") {
+  const std::vector<std::string> p = problems(life_scene());
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].rfind("effects.life: its keys are valid, but the life stage is not supported yet", 0) == 0);
+}
+
+TEST_CASE("the life effect's keys: wrong signs and ranges are named with what is allowed, every one at once") {
+  json j = life_scene();
+  auto& life = j["effects"]["life"];
+  life["initiation"]["b"] = 0.08;
+  life["initiation"]["c"] = 0.5;
+  life["initiation"]["sigma_f"] = -1;
+  life["growth"]["C"] = -5e-30;
+  life["growth"]["m"] = 0;
+  life["growth"]["a_initial"] = 2e-3;
+  life["growth"]["mode"] = "III";
+  life["growth"]["short_crack"] = "kitagawa";
+  life["cycles_max"] = 0;
+  CHECK(reports(j, "effects.life.initiation.b", {"(-1, 0)"}));
+  CHECK(reports(j, "effects.life.initiation.c", {"(-2, 0)"}));
+  CHECK(reports(j, "effects.life.initiation.sigma_f", {"Pa"}));
+  CHECK(reports(j, "effects.life.growth.C", {"Paris coefficient"}));
+  CHECK(reports(j, "effects.life.growth.m", {"(0, 20]"}));
+  CHECK(reports(j, "effects.life.growth.a_final", {"not longer than a_initial"}));
+  CHECK(reports(j, "effects.life.growth.mode", {"\"I\"", "\"equivalent\""}));
+  CHECK(reports(j, "effects.life.growth.short_crack", {"el_haddad"}));
+  CHECK(reports(j, "effects.life.cycles_max", {"1e15"}));
+
+  json none = life_scene();
+  none["effects"]["life"] = json::object();
+  CHECK(reports(none, "effects.life", {"neither \"initiation\" nor \"growth\""}));
+  json no_start = life_scene();
+  no_start["effects"]["life"].erase("initiation");
+  CHECK(reports(no_start, "effects.life.growth.a_initial", {"missing"}));
+  json no_limit = life_scene();
+  no_limit["effects"]["life"]["growth"].erase("fatigue_limit");
+  CHECK(reports(no_limit, "effects.life.growth.fatigue_limit", {"missing"}));
+  json stray = life_scene();
+  stray["effects"]["life"]["growth"]["short_crack"] = "none";
+  CHECK(reports(stray, "effects.life.growth.fatigue_limit", {"without short_crack"}));
+}

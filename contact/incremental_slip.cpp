@@ -754,13 +754,14 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
   r.Q_peak = std::abs(Q_prev_);  // the cycle starts at its top
   double sliding = 0.0;          // rigid sliding beyond the stick limit over the cycle (m)
   std::vector<double> hi_unloaded = hi_;
+  bool sliding_unloaded = false;  // the bodies slide rigidly through the unloaded phase (δ = 0): no cell sticks
   for (int j = 1; j <= m_; ++j) {
     // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
     const double xt = 2 * j <= m_ ? X_ * (1.0 - 4.0 * j / m_) : X_ * (-1.0 + 4.0 * (j - m_ / 2) / m_);
     r.solves.push_back(step(xt, c, j));
     sliding += std::abs(extra_);
     end_increment(r, Q_prev_);
-    if (4 * j == m_) r.q_unloaded = state_.q, hi_unloaded = hi_;
+    if (4 * j == m_) r.q_unloaded = state_.q, hi_unloaded = hi_, sliding_unloaded = extra_ != 0.0;
     if (2 * j == m_) {
       r.q_bottom = state_.q;
       if (coupled_) result_.p_bottom = p_;
@@ -770,6 +771,9 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
   if (coupled_) result_.p_top = p_;
   r.q_top = state_.q;
   close_cycle(grid_, w_max_, w_min_, hi_, hi_unloaded, r);
+  // Sliding, every cell sits at |q| = f p; the margin f p − |q| is then zero but for round-off, which must not pass
+  // for a stick zone.
+  if (sliding_unloaded) r.stick_zone_unloaded.reset();
   classify(r, sliding);
   result_.cycles.push_back(std::move(r));
 }

@@ -79,6 +79,7 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   const double f = *scene_.friction;
   out.p = normal_.p;
   out.s.assign(n, 0.0);
+  out.s_touching.clear();  // partial slip only (force control at Q < f P)
   q_top_.resize(n);  // q = f (p − p*) at the top of the cycle
   for (int i = 0; i < n; ++i) {
     if (corrective_.p[i] > 0.0 && !(normal_.p[i] > 0.0))
@@ -110,6 +111,26 @@ void AnalogyContactResponse::restore(const json& j) {
 }
 
 namespace {
+
+// The slip per cycle continued from the contact's cells (p > 0) over the cells out of contact: linear between the
+// nearest contact cells on either side, constant beyond the outermost ones. In gross slip every point of the
+// specimen's surface slides past the pad by the same rigid 4 × sliding amplitude per cycle, and the elastic part
+// varies smoothly along the contact, so a cell that touches during a step travels what its touching neighbours do.
+std::vector<double> continued_over_gaps(std::span<const double> p, std::span<const double> s) {
+  const int n = int(p.size());
+  std::vector<double> out(s.begin(), s.end());
+  int prev = -1;
+  for (int i = 0; i < n; ++i) {
+    if (!(p[i] > 0.0)) continue;
+    if (prev < 0)
+      std::fill(out.begin(), out.begin() + i, s[i]);
+    else
+      for (int j = prev + 1; j < i; ++j) out[j] = s[prev] + (s[i] - s[prev]) * double(j - prev) / double(i - prev);
+    prev = i;
+  }
+  if (prev >= 0) std::fill(out.begin() + prev + 1, out.end(), s[prev]);
+  return out;
+}
 
 IncrementalSlipOptions incremental_options(const Scene& scene) {
   IncrementalSlipOptions o;
@@ -157,6 +178,12 @@ void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleR
   out.has_stick = cycle_.stick_zone.has_value();
   out.stick_left = out.stick_right = 0.0;
   if (out.has_stick) out.stick_left = cycle_.stick_zone->first, out.stick_right = cycle_.stick_zone->second;
+  // In gross slip a cell out of contact would slide as its neighbours do on touching (wear/implicit_stepper.hpp:
+  // lagging it at 0 is what makes the contact-implicit step unstable there). In partial slip it would not slip.
+  if (cycle_.regime == Regime::gross_slip)
+    out.s_touching = continued_over_gaps(normal_.p, out.s);
+  else
+    out.s_touching.clear();
 }
 
 json IncrementalContactResponse::save() const {

@@ -33,10 +33,10 @@ controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& conta
   if (p_half_.size() != w.size()) p_half_ = response_.p;
 
   std::vector<double> p_two;
-  const bool solved = euler(contact, w, response_.s, dN, p_full_, w_full_) &&
-                      euler(contact, w, response_.s, 0.5 * dN, p_half_, w_half_) &&
+  const bool solved = euler(contact, w, response_.slip_if_touching(), dN, p_full_, w_full_) &&
+                      euler(contact, w, response_.slip_if_touching(), 0.5 * dN, p_half_, w_half_) &&
                       (half_.p = p_half_, contact.respond(w_half_, half_), ++stats_.responses, p_two = p_half_,
-                       euler(contact, w_half_, half_.s, 0.5 * dN, p_two, w_two_));
+                       euler(contact, w_half_, half_.slip_if_touching(), 0.5 * dN, p_two, w_two_));
   if (!solved) {
     ++stats_.rejected;
     ++stats_.unconverged;
@@ -54,7 +54,8 @@ controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& conta
   // half steps' increment (it entered between N and N + ΔN/2). Extrapolating would take the upper end; the midpoint
   // is kept, and the half-width of that range is its error. Elsewhere the Richardson difference is the error.
   // (No slip at w_n, so the one step did not wear the cell; the two half steps did.)
-  auto starts_wearing = [this](std::size_t i, double two) { return response_.s[i] == 0.0 && two > 0.0; };
+  const std::vector<double>& s_lagged = response_.slip_if_touching();
+  auto starts_wearing = [&s_lagged](std::size_t i, double two) { return s_lagged[i] == 0.0 && two > 0.0; };
   double diff = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < w.size(); ++i) scale = std::max(scale, std::abs(w_two_[i]));
   for (std::size_t i = 0; i < w.size(); ++i) {

@@ -1,7 +1,8 @@
 // The contact-implicit wear stepper of ARCHITECTURE.md ("Wear in time"), as a Boost.Odeint controlled stepper, so
 // that integrate_adaptive / integrate_times, observers and the failed-step checker drive it.
 //
-// One step of size ΔN from w_n, with the slip s lagged at w_n (backward Euler in the pressure):
+// One step of size ΔN from w_n, with the slip s lagged at w_n (backward Euler in the pressure; s is the slip each
+// cell would travel were it touching, CycleResponse::slip_if_touching, for the reason below):
 //     w_{n+1} = w_n + ΔN c s ⊙ p_{n+1},   p_{n+1} from the contact with gap g0 + w_n + ΔN c diag(s) p_{n+1},
 // a normal solve with the operator K + ΔN c diag(s): stable for any ΔN and any grid (no checkerboard), unlike the
 // explicit update, whose jump is limited to about 1.5 Δx/(E* c s_max). Raised to second order by Richardson
@@ -10,22 +11,44 @@
 //     err = max_i e_i / (tolerance · max_i w) ≤ 1,   e_i = |w_two halves − w_one step|,   ΔN ← ΔN · 0.9/√err.
 // Wear never decreases: the extrapolated state is kept at least w_n.
 //
-// Cells that start to wear within the step. The slip is lagged, so a cell that enters the contact (or the slip
-// zone) during the step is not worn by the one step of ΔN at all, while the two half steps wear it over the second
-// half: the difference is then first order in ΔN, not second, and extrapolating doubles the half steps' increment
-// (it assumes the cell wore from the start). Such a cell entered between N and N + ΔN/2, so it wore between one and
-// two times the half steps' increment Δ2: the midpoint w_n + 1.5 Δ2 is kept and e_i = 0.5 Δ2. Measured
-// (docs/PERFORMANCE.md, "Wear steppers"): these cells, at the outer edge of the worn zone as the contact spreads,
-// set most rejections and the largest errors of the transient; with the midpoint, 1 % costs about 40 accepted
-// steps on the benchmark's case instead of about 60, tight tolerances are unchanged, and the loosest (1e-1, 3e-2)
-// err more than before (16 % and 4.3 % against 11.5 % and 2 %, with 5 steps fewer). A cell that enters in the
-// second half is seen by neither solution (both leave it unworn) and is picked up by the next step: that error,
-// bounded by half a step of its rate, remains. Tried and not kept (measured on the same case): a mixed abs/rel norm
-// weighting by the local depth (more steps for the same error: it tightens the edge cells), an RMS norm (fewer
-// steps, 2–4 % max-norm errors), err^(−1/3) (the estimate is of the Euler solution, O(ΔN²), as 1/2 assumes), a PI
-// controller (fewer rejections, more accepted steps), growth caps 2–8 and safety factors 0.8–0.95 (changes within
-// the scatter), and a check of the state at the step's end for cells entering in the second half (errors 10× below
-// the tolerance, but 1 % then costs 45–60 steps and an extra contact solve per step).
+// Why, and which s. On the contact set C a perturbation δw of the worn profile moves the pressure by
+// δp = −K_C⁻¹ δw (the load held by the mean gap), so with S = diag(s) frozen the step maps
+//     δw_{n+1} = (I + ΔN c S K_C⁻¹)⁻¹ δw_n,
+// and S K_C⁻¹ is similar to S^½ K_C⁻¹ S^½ ⪰ 0: every mode is damped, by 1/(1 + ΔN c s λ) with λ up to about
+// E*/(1.5 Δx) for the checkerboard (the explicit map 1 − ΔN c s λ is what limits the explicit jump). This holds only
+// if s > 0 on every cell that p_{n+1} may load. The slip travelled in the cycle is 0 off the contact, and in gross
+// slip (the whole contact slides; inside a worn flat every cell is within one step's wear of touching) lagging that
+// zero breaks it: a cell out of contact at w_n gets d_i = 0 beside neighbours of compliance d = ΔN c s, which
+// exceeds the kernel's diagonal (about Δx/E*) by ΔN over the stability limit; the end-of-step solve loads it, it
+// carries its neighbours' load without wearing and protrudes; at w_{n+1} they lift off and get s = 0 in turn. s
+// switches cell by cell with the state, the lag does not see it, and the alternation grows step by step (1024 to
+// 4096 cells, 18 000 cycles of 25 µm stroke: every other cell of the worn zone open, single-cell edge pressures of
+// 170–600 MPa against a smooth 38, the worn area 19 % low at 4096 cells). Since p = 0 wherever s was cut, the rate
+// c p s does not depend on what s is there: the step lags instead the slip each cell would travel were it
+// touching (CycleResponse::slip_if_touching; in gross slip the bodies slide past every x alike, and the contact
+// continues s over the cells out of contact), which makes S > 0 on every cell that can be loaded and the argument
+// above hold. In partial slip the stick zone keeps s = 0 (it carries load and does not wear, as it should; it is one
+// contiguous zone set by the load, not by the cells' state) and so do the cells beyond the contact: nothing changes
+// there. What remains at a moving contact edge is the extrapolation's error: the pressure of a worn flat moves by
+// about E*/Δx per metre of wear, and the edge cells' pressure is rough by tens of percent at tolerance 1e-3 (smooth
+// at 1e-4) where the every-cycle solution is flat.
+//
+// Cells that start to wear within the step. The slip is lagged, so a cell that enters the contact (or the slip zone)
+// during the step with no slip lagged (partial slip) is not worn by the one step of ΔN at all, while the two half steps
+// wear it over the second half: the difference is then first order in ΔN, not second, and extrapolating doubles the
+// half steps' increment (it assumes the cell wore from the start). Such a cell entered between N and N + ΔN/2, so it
+// wore between one and two times the half steps' increment Δ2: the midpoint w_n + 1.5 Δ2 is kept and e_i = 0.5 Δ2.
+// Measured (docs/PERFORMANCE.md, "Wear steppers"): these cells, at the outer edge of the worn zone as the contact
+// spreads, set most rejections and the largest errors of the transient; with the midpoint, 1 % costs about 40 accepted
+// steps on the benchmark's case instead of about 60, tight tolerances are unchanged, and the loosest (1e-1, 3e-2) err
+// more than before (16 % and 4.3 % against 11.5 % and 2 %, with 5 steps fewer). A cell that enters in the second half
+// is seen by neither solution (both leave it unworn) and is picked up by the next step: that error, bounded by half a
+// step of its rate, remains. Tried and not kept (measured on the same case): a mixed abs/rel norm weighting by the
+// local depth (more steps for the same error: it tightens the edge cells), an RMS norm (fewer steps, 2–4 % max-norm
+// errors), err^(−1/3) (the estimate is of the Euler solution, O(ΔN²), as 1/2 assumes), a PI controller (fewer
+// rejections, more accepted steps), growth caps 2–8 and safety factors 0.8–0.95 (changes within the scatter), and a
+// check of the state at the step's end for cells entering in the second half (errors 10× below the tolerance, but 1 %
+// then costs 45–60 steps and an extra contact solve per step).
 //
 // A contact-implicit solve that does not converge rejects the step like a too-large error, and ΔN is cut by 4: near
 // the asymptote a large jump gives d = ΔN c s up to 10^5 times the kernel's diagonal on the worn cells, and the
@@ -96,7 +119,7 @@ class ImplicitWearStepper {
     contact.respond(w, r);
     std::vector<double> p = r.p;
     state_type out;
-    if (!euler(contact, w, r.s, dN, p, out))
+    if (!euler(contact, w, r.slip_if_touching(), dN, p, out))
       throw ImplicitSolveFailure("wear: the contact-implicit solve did not converge");
     w = out;
   }

@@ -1030,9 +1030,10 @@ void parse_output(Reader& top, Scene& s, std::vector<std::string>& problems) {
 
 // What the effects need of the load, the friction and the bodies, and what is given that no effect uses.
 void check_needs(const Scene& s, const Given& given, std::vector<std::string>& problems) {
-  if (s.life)
-    problems.push_back("effects.life: its keys are valid, but the life stage is not supported yet (it is being "
-                       "built); run without effects.life");
+  if (s.life && !given.effects_unknown && !s.tangential)
+    problems.push_back("effects.life: needs the load cycle, whose stresses start the crack and whose SIFs grow it; "
+                       "add \"tangential\": {} to effects, with friction and load.Q (or load.control "
+                       "\"displacement\" with load.delta)");
   if (given.effects_unknown) {
     // reported above; what the effects need is checked once they are readable
   } else if (s.tangential) {
@@ -1055,9 +1056,9 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
         problems.push_back("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
                            "repeated between fixed limits of Q (load.Q) or of the displacement (load.control "
                            "\"displacement\" with load.delta)");
-      if (s.stress || s.crack)
-        problems.push_back("effects.stress, effects.crack: their top and bottom phases assume the in-phase cycle of "
-                           "load.Q; with load.history they are not supported yet");
+      if (s.stress || s.crack || s.life)
+        problems.push_back("effects.stress, effects.crack, effects.life: their top and bottom phases assume the "
+                           "in-phase cycle of load.Q; with load.history they are not supported yet");
     } else if (!given.control || !given.load_read) {
       // the load control is unknown, or so is the whole load: nothing more to ask for
     } else if (given.control == LoadControl::force) {
@@ -1088,10 +1089,10 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (s.wear || s.stress || s.crack)
-        problems.push_back(dissimilar + "; effects.wear, effects.stress and effects.crack use the pressure of the "
-                                        "uncoupled normal solve and the analogy's cycle, and with beta != 0 are not "
-                                        "supported yet");
+      if (s.wear || s.stress || s.crack || s.life)
+        problems.push_back(dissimilar + "; effects.wear, effects.stress, effects.crack and effects.life use the "
+                                        "pressure of the uncoupled normal solve and the analogy's cycle, and with beta "
+                                        "!= 0 are not supported yet");
     }
   } else {
     if (given.Q)

@@ -101,7 +101,8 @@ Setup make_setup(const Scene& scene) {
   Setup setup{make_model(scene), std::nullopt, {}};
   if (scene.tangential) setup.cycle = plan_cycle(scene, setup.model.pair);
   setup.effects = {scene.tangential.has_value(), scene.wear.has_value(), scene.stress.has_value(),
-                   scene.stress.has_value() && scene.tangential.has_value(), scene.crack.has_value()};
+                   scene.stress.has_value() && scene.tangential.has_value(), scene.crack.has_value(),
+                   scene.life.has_value()};
   return setup;
 }
 

@@ -59,7 +59,7 @@ CyclePlan plan_cycle(const Scene& scene, const ElasticPair& pair);
 // The effects a scene runs, in order, with those another needs (tangential for wear, and the fatigue measures of a
 // stress map under a cycle).
 struct Effects {
-  bool cycle = false, wear = false, stress = false, fatigue = false, crack = false;
+  bool cycle = false, wear = false, stress = false, fatigue = false, crack = false, life = false;
 };
 
 struct Setup {

@@ -60,6 +60,8 @@ RunResult Simulation::run(const WearControl* control) const {
     r.crack_x = crack_position(*scene_.crack, r.normal);
     r.sifs = timed(r.timings.crack, [&] { return run_crack(scene_, model, r.normal, cycle, wear); });
   }
+  if (setup.effects.life && reached)
+    r.life = timed(r.timings.life, [&] { return run_life(scene_, model, r.normal, *cycle, wear); });
   r.timings.total = seconds_since(t0);
   r.warnings = result_warnings(scene_, r);
   return r;
@@ -95,6 +97,9 @@ const std::vector<StageOutputs>& stage_outputs() {
        [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
          write_crack(s, r.sifs, r.crack_x, r.wear.has_value(), out, w);
        }},
+      {"life", &Timings::life, [](const RunResult& r) { return r.life.has_value(); },
+       [](const Scene& s, const RunResult& r, json& j) { j["life"] = summarise_life(s, *r.life); },
+       [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) { write_life(s, *r.life, out, w); }},
   };
   return stages;
 }

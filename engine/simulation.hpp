@@ -1,5 +1,5 @@
 // One scene, run: the setup resolved once (engine/setup.hpp: the model, the plan of the load cycle, the effects), then
-// each stage the scene asks for, in order: normal, cycle, wear, stress (with its fatigue measures), crack.
+// each stage the scene asks for, in order: normal, cycle, wear, stress (with its fatigue measures), crack, life.
 // Simulation::run() reads like the method; each stage lives in an engine/*_stage.* module, the physics in contact/
 // and wear/. stage_outputs() lists what each stage adds to summary.json and to the output folder, which
 // make_summary() and write_results() (engine/output.hpp) loop over: a new effect adds its line there.
@@ -15,6 +15,7 @@
 #include "engine/cycle_stage.hpp"
 #include "engine/fatigue_stage.hpp"
 #include "engine/folder.hpp"
+#include "engine/life_stage.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
@@ -28,7 +29,7 @@ struct Timings {
   double total = 0.0, normal = 0.0;   // wall seconds
   std::optional<double> tangential;   // present when the stage ran
   std::optional<double> wear;
-  std::optional<double> stress, crack;
+  std::optional<double> stress, crack, life;
 };
 
 struct RunResult {
@@ -39,6 +40,7 @@ struct RunResult {
   std::vector<SifSet> sifs;                // at the top and bottom of every state (initial, then each record)
   double crack_x = 0.0;                    // where the crack is (m)
   std::optional<FatigueStage> fatigue;     // SWT and Ruiz, with the stress maps of a cycle
+  std::optional<LifeStage> life;           // initiation and growth over the states the run went through
   Timings timings;
   std::vector<Warning> warnings;  // what the results cannot be trusted for (engine/warnings.hpp)
 };

@@ -605,10 +605,18 @@ json life_scene() {
 
 }  // namespace
 
-TEST_CASE("the life effect's keys: SCENES.md's example is valid, and the stage is not yet built") {
-  const std::vector<std::string> p = problems(life_scene());
-  REQUIRE(p.size() == 1);
-  CHECK(p[0].rfind("effects.life: its keys are valid, but the life stage is not supported yet", 0) == 0);
+TEST_CASE("the life effect's keys: SCENES.md's example is valid, resolves to itself, and needs the load cycle") {
+  const Scene s = parse_scene(life_scene());
+  REQUIRE(s.life);
+  CHECK(s.life->a_initial() == 2e-5);  // the critical distance, as SCENES.md says
+  const json resolved = s.to_json();
+  CHECK(resolved["effects"]["life"]["growth"]["a_initial"] == 2e-5);
+  CHECK(parse_scene(resolved).to_json() == resolved);
+  json alone = life_scene();
+  alone["effects"].erase("tangential");
+  alone.erase("friction");
+  alone["load"].erase("Q");
+  CHECK(reports(alone, "effects.life", {"needs the load cycle"}));
 }
 
 TEST_CASE("the life effect's keys: wrong signs and ranges are named with what is allowed, every one at once") {

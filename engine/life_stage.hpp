@@ -1,0 +1,70 @@
+// The life stage (PHYSICS.md, "Fretting-fatigue life"; contact/fatigue_life.hpp): when the contact starts a crack,
+// and how long the crack takes to grow, over the states the run went through (the unworn contact, or every wear
+// record, each holding from its cycle count to the next record's, the last for ever).
+//
+// Initiation. At each state k the critical-plane SWT (contact/fatigue_measures.hpp) is evaluated on a layer under
+// the contact: points x across the contact and half its half-width beyond, depths y from the surface to the critical
+// distance ℓ plus the specimen's deepest wear. A point at depth d below the surface damages at the rate
+// 1/N_i(SWT_ℓ(x, d)), SWT_ℓ the mean over [d, d + ℓ] (the value at d when ℓ = 0). Damage is carried by material
+// points fixed in the specimen: the specimen's wear w_s(x) = (1 − pad_fraction) w(x) (both bodies share one scar,
+// split by pad_fraction) brings a point at original depth y₀ to depth y₀ − w_s, and removes it past the surface,
+// taking its damage with it. The crack starts at the surface point x whose material first reaches D = 1:
+//     D(N) = Σ_{j<k} (N_{j+1} − N_j) / N_i(SWT_ℓ,j(x, w_s,k − w_s,j)) + (N − N_k) / N_i(SWT_ℓ,k(x, 0)),
+// solved in the interval of the state k in force. Without wear there is one state and N_i = N_i(SWT_ℓ(x, 0)), the
+// SWT of the one cycle, exactly.
+//
+// Propagation. The crack grows where effects.crack places it (its position and angle) when the scene has a crack
+// effect, otherwise normal to the surface at the initiation site, from a_initial (default ℓ) to a_final, by Paris'
+// law on tables of the closed-crack SIFs of each state at kTableLengths lengths log-spaced over [a_initial, a_final]
+// (the crack solver's, at the top and the bottom of the cycle), starting at the initiation's cycle count.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "contact/fatigue_life.hpp"
+#include "engine/cycle_stage.hpp"
+#include "engine/folder.hpp"
+#include "engine/normal_stage.hpp"
+#include "engine/scene.hpp"
+#include "engine/setup.hpp"
+#include "engine/wear_stage.hpp"
+
+namespace fretwear {
+
+constexpr int kTableLengths = 40;  // crack lengths per SIF table (the growth interpolates between them)
+
+struct LifeInitiationResult {
+  double cycles = 0.0;             // N_i (+∞: never)
+  double swt = 0.0;                // SWT_ℓ at the site in the state where it started (Pa)
+  double x = 0.0, y = 0.0;         // the site (m): a surface point, y = 0
+  double angle_deg = 0.0;          // the critical plane's normal at the site, from +x toward +y (degrees)
+  double state_cycles = 0.0;       // the cycle count of the state in force then
+  std::vector<double> map_x, map_y;  // the damage map's axes (m): depths below the surface of that state
+  std::vector<double> damage;        // row-major, y outer: Miner's damage at the initiation (or per cycle, if never)
+};
+
+struct LifeStage {
+  std::optional<LifeInitiationResult> initiation;
+  std::optional<GrowthResult> propagation;
+  double crack_x = 0.0, crack_angle_deg = 90.0;  // where the crack grows (m, degrees to the surface)
+  double a_initial = 0.0, a_final = 0.0;          // m
+  double total_cycles = 0.0;                      // +∞ when it never fails
+  std::string fate;   // "failure", "arrest", "runout", or "initiation" when growth was not asked for
+  double final_length = 0.0;  // m (0 without growth)
+};
+
+// The stage, over the unworn contact (wear null) or every wear record.
+LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
+                   const WearStage* wear);
+
+// Its part of summary.json: "life" (SCENES.md; an infinite count is null).
+nlohmann::json summarise_life(const Scene& scene, const LifeStage& life);
+
+// crack_growth.csv, damage.csv and, with plots, life.gp with life_damage.png and crack_growth.svg/.png.
+void write_life(const Scene& scene, const LifeStage& life, OutputFolder& out, Written& written);
+
+}  // namespace fretwear

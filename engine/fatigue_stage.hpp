@@ -21,7 +21,7 @@ namespace fretwear {
 
 // SWT on the stress map's points.
 struct SwtMap {
-  std::vector<double> x, y;         // the stress maps' axes (m); the first row lies just below the surface
+  std::vector<double> x, y;         // the stress maps' axes (m); the first row is the surface, y = 0
   std::vector<SwtResult> points;    // row-major: y outer, x inner
   SwtResult max;                    // the largest SWT over the map
   double max_x = 0.0, max_y = 0.0;  // where (m)

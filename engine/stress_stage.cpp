@@ -76,13 +76,14 @@ std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& p
     StressMap m;
     m.phase = ph.name;
     for (int i = 0; i < effect.nx; ++i) m.x.push_back(x_lo + (x_hi - x_lo) * i / (effect.nx - 1));
-    // Depths from just below the surface (the surface itself is the traction) to `depth`.
+    // The surface, then ny rows at (j + ½) depth / ny.
+    m.y.push_back(0.0);
     for (int j = 0; j < effect.ny; ++j) m.y.push_back(depth * (j + 0.5) / effect.ny);
     m.sigma.resize(m.x.size() * m.y.size());
     for (std::size_t i = 0; i < m.x.size(); ++i) {
       const auto column = stress_along_depth(t, m.x[i], m.y);
       for (std::size_t j = 0; j < m.y.size(); ++j) m.sigma[j * m.x.size() + i] = column[j];
-      m.surface_sxx.push_back(stress_at(t, m.x[i], 0.0).xx);
+      m.surface_sxx.push_back(column.front().xx);
     }
     const double mid = 0.5 * (x_lo + x_hi);
     for (std::size_t i = 0; i < m.x.size(); ++i)

@@ -19,15 +19,17 @@
 
 namespace fretwear {
 
+// One phase's map. Rows: the surface y = 0, where σyy = −p, σxy = −q and σxx are the tractions' exact limits
+// (contact/subsurface_stress.hpp), then ny rows at y_j = (j + ½) depth / ny, j = 0 … ny − 1.
 struct StressMap {
   std::string phase;
-  std::vector<double> x, y;     // map axes (m)
+  std::vector<double> x, y;     // map axes (m); y[0] = 0
   std::vector<Stress> sigma;    // row-major: y outer, x inner
-  std::vector<double> surface_sxx;  // σxx at y = 0 per map x (Pa)
+  std::vector<double> surface_sxx;  // σxx of the surface row per map x (Pa)
   double trailing_peak = 0.0, trailing_peak_x = 0.0;  // largest surface σxx on the trailing half (Pa, m)
 };
 
-// Stress maps over [x_lo, x_hi] × [0, depth] for each phase.
+// Stress maps over [x_lo, x_hi] × [0, depth] for each phase, nx × (ny + 1) points.
 std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
                                    double depth, const StressEffect& effect);
 

@@ -71,7 +71,7 @@ TEST_CASE("fatigue scene, Hertz partial slip: the keys, SWT at the contact's edg
   CHECK(map.y.front() == 0.0);
   CHECK(st["swt_max_y"].get<double>() == map.y.front());
   REQUIRE(run.fatigue);
-  const SwtMap& swt = run.fatigue->swt;
+  const SwtMap& swt = run.fatigue->last().swt;
   const std::size_t nx = swt.x.size();
   const auto i_max = std::size_t(std::lround((st["swt_max_x"].get<double>() - swt.x[0]) / h_map));
   const SwtResult &at = swt.points[i_max], &mirror = swt.points[nx - 1 - i_max];
@@ -105,7 +105,7 @@ TEST_CASE("fatigue scene, bulk tension in phase with Q: SWT peaks at the trailin
   CHECK(map.y.front() == 0.0);
   CHECK(st["swt_max_y"].get<double>() == map.y.front());
   // Not a tie any more: the leading edge's best is clearly lower.
-  const SwtMap& swt = run.fatigue->swt;
+  const SwtMap& swt = run.fatigue->last().swt;
   double leading = 0.0;
   for (std::size_t i = 0; i < swt.x.size(); ++i)
     if (swt.x[i] > 0.0) leading = std::max(leading, swt.points[i].swt);
@@ -149,8 +149,8 @@ TEST_CASE("fatigue scene: a bulk tension in phase with Q raises SWT and F2, the 
     std::getline(in, line);
     return line;
   };
-  CHECK(header("fatigue.csv") == "x_m,y_m,swt_Pa,theta_crit_deg,sigma_n_max_Pa,delta_eps_n");
-  CHECK(header("ruiz.csv") == "x_m,sxx_top_Pa,tau_top_Pa,slip_amplitude_m,F1_Pa_m,F2_Pa2_m");
+  CHECK(header("fatigue.csv") == "cycles,x_m,y_m,swt_Pa,theta_crit_deg,sigma_n_max_Pa,delta_eps_n");
+  CHECK(header("ruiz.csv") == "cycles,x_m,sxx_top_Pa,tau_top_Pa,slip_amplitude_m,F1_Pa_m,F2_Pa2_m");
   std::error_code ec;
   fs::remove_all(dir, ec);
 }

@@ -14,9 +14,9 @@ namespace fretwear {
 
 namespace {
 
-const StressMap* find_map(const std::vector<StressMap>& maps, const std::string& phase) {
+const StressMap* find_map(const std::vector<StressMap>& maps, double cycles, const std::string& phase) {
   for (const StressMap& m : maps)
-    if (m.phase == phase) return &m;
+    if (m.cycles == cycles && m.phase == phase) return &m;
   return nullptr;
 }
 
@@ -44,15 +44,19 @@ std::string num(double v) { return fmt::format("{:.10g}", v); }
 
 double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
 
-std::string fatigue_csv(const SwtMap& m) {
-  std::string s = "x_m,y_m,swt_Pa,theta_crit_deg,sigma_n_max_Pa,delta_eps_n\n";
-  s.reserve(s.size() + m.points.size() * 80);
-  for (std::size_t j = 0; j < m.y.size(); ++j)
-    for (std::size_t i = 0; i < m.x.size(); ++i) {
-      const SwtResult& r = m.points[j * m.x.size() + i];
-      s += fmt::format("{},{},{},{},{},{}\n", num(m.x[i]), num(m.y[j]), num(r.swt), num(degrees(r.theta)),
-                       num(r.sigma_n_max), num(r.delta_eps_n));
-    }
+std::string fatigue_csv(const std::vector<FatigueRecord>& records) {
+  std::string s = "cycles,x_m,y_m,swt_Pa,theta_crit_deg,sigma_n_max_Pa,delta_eps_n\n";
+  for (const FatigueRecord& rec : records) {
+    const SwtMap& m = rec.swt;
+    const std::string cycles = num(rec.cycles);
+    s.reserve(s.size() + m.points.size() * 90);
+    for (std::size_t j = 0; j < m.y.size(); ++j)
+      for (std::size_t i = 0; i < m.x.size(); ++i) {
+        const SwtResult& r = m.points[j * m.x.size() + i];
+        s += fmt::format("{},{},{},{},{},{},{}\n", cycles, num(m.x[i]), num(m.y[j]), num(r.swt),
+                         num(degrees(r.theta)), num(r.sigma_n_max), num(r.delta_eps_n));
+      }
+  }
   return s;
 }
 
@@ -67,19 +71,24 @@ std::string swt_map_dat(const SwtMap& m) {
   return s;
 }
 
-std::string ruiz_csv(const RuizProfile& r) {
-  std::string s = "x_m,sxx_top_Pa,tau_top_Pa,slip_amplitude_m,F1_Pa_m,F2_Pa2_m\n";
-  for (std::size_t i = 0; i < r.x.size(); ++i)
-    s += fmt::format("{},{},{},{},{},{}\n", num(r.x[i]), num(r.sigma_t[i]), num(r.tau[i]), num(r.delta[i]),
-                     num(r.F1[i]), num(r.F2[i]));
+std::string ruiz_csv(const std::vector<FatigueRecord>& records) {
+  std::string s = "cycles,x_m,sxx_top_Pa,tau_top_Pa,slip_amplitude_m,F1_Pa_m,F2_Pa2_m\n";
+  for (const FatigueRecord& rec : records) {
+    if (!rec.ruiz) continue;
+    const RuizProfile& r = *rec.ruiz;
+    const std::string cycles = num(rec.cycles);
+    for (std::size_t i = 0; i < r.x.size(); ++i)
+      s += fmt::format("{},{},{},{},{},{},{}\n", cycles, num(r.x[i]), num(r.sigma_t[i]), num(r.tau[i]),
+                       num(r.delta[i]), num(r.F1[i]), num(r.F2[i]));
+  }
   return s;
 }
 
-// fatigue.gp: the SWT map with contour lines, the critical plane at its maximum, the contact's ends; Ruiz's F1 and
-// F2 along x with the stick zone shaded.
+// fatigue.gp: the last record's SWT map with contour lines, the critical plane at its maximum, the contact's ends;
+// Ruiz's F1 and F2 along x at every record (one colour per record) with the unworn cycle's stick zone shaded.
 std::string fatigue_plot_script(const Scene& scene, const NormalResult& normal, const CycleStage& cycle,
                                 const FatigueStage& f) {
-  const SwtMap& m = f.swt;
+  const SwtMap& m = f.last().swt;
   const double x0 = m.x.front() * 1e3, x1 = m.x.back() * 1e3, depth = m.y.back() * 1e3;
   std::string s = fmt::format(R"(# Fatigue measures (contact/fatigue_measures.hpp). Re-run with: gnuplot fatigue.gp
 set view map
@@ -111,18 +120,21 @@ unset key
   s += fmt::format("set label 'max {:.3g} MPa at x = {:.4g} mm, y = {:.3g} µm; critical plane (black) θ_{{crit}} = "
                    "{:.1f}°' at graph 0.02,0.06 front tc rgb '#ffffff'\n",
                    m.max.swt * 1e-6, px, m.max_y * 1e6, degrees(theta));
-  s += fmt::format("set title \"{}: Smith–Watson–Topper on the critical plane over the cycle\" noenhanced\n",
-                   scene.name);
+  s += fmt::format("set title \"{}: Smith–Watson–Topper on the critical plane over the cycle, {}\" noenhanced\n",
+                   scene.name, cycles_text(f.last().cycles));
   s += png_only("swt_map",
                 "splot 'swt_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d notitle, "
                 "'' using ($1*1e3):($2*1e3):($3*1e-6) nosurface with lines lc rgb '#333333' notitle\n",
                 1000, 460);
-  if (!f.ruiz) return s;
+  std::vector<const FatigueRecord*> ruiz;
+  for (const FatigueRecord& rec : f.records)
+    if (rec.ruiz) ruiz.push_back(&rec);
+  if (!f.last().ruiz) return s;
   s += R"(
 reset
 set datafile separator ','
 set grid
-set key outside below center
+set key outside right top
 set xlabel 'x (mm)'
 set ylabel 'F1 = τ δ (J/m²)'
 set y2label 'F2 = σ_T τ δ (MPa·J/m²)'
@@ -136,13 +148,18 @@ set y2range [0:*]
   if (c.stick_zone)
     s += fmt::format("set object 1 rect from {},graph 0 to {},graph 1 back fc rgb '#eeeeee' fs solid noborder\n",
                      c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
-  s += fmt::format("set title \"{}: Ruiz parameters along the surface, top of the cycle (grey: stick zone)\" "
-                   "noenhanced\n", scene.name);
-  s += svg_and_png("ruiz",
-                   "plot 'ruiz.csv' skip 1 using ($1*1e3):5 with lines lw 1.8 lc rgb '#1f77b4' title 'F1 = τ δ, "
-                   "left axis (τ shear traction, δ slip amplitude)', '' skip 1 using ($1*1e3):($6*1e-6) axes x1y2 "
-                   "with lines lw 1.8 lc rgb '#d62728' title 'F2 = σ_T τ δ, right axis (σ_T tensile surface σ_{xx})'\n",
-                   1000, 600);
+  s += fmt::format("set title \"{}: Ruiz parameters along the surface, top of the cycle (grey: the unworn stick "
+                   "zone)\\nsolid: F1 = τ δ, left axis; dashed: F2 = σ_T τ δ, right axis\" noenhanced\n", scene.name);
+  // One record's rows of ruiz.csv: its cycles written as the CSV writes them, so that gnuplot compares equal numbers.
+  std::string plot = "plot ";
+  for (std::size_t k = 0; k < ruiz.size(); ++k) {
+    const std::string colour = ramp(ruiz.size() == 1 ? 1.0 : double(k) / double(ruiz.size() - 1));
+    const std::string rows = fmt::format("($1 == {} ? $2*1e3 : 1/0)", num(ruiz[k]->cycles));
+    plot += fmt::format("{}'ruiz.csv' skip 1 using {}:6 with lines lw 1.8 lc rgb '{}' title '{}', "
+                        "'' skip 1 using {}:($7*1e-6) axes x1y2 with lines lw 1.4 dt 2 lc rgb '{}' notitle",
+                        k ? ", " : "", rows, colour, cycles_label(ruiz[k]->cycles), rows, colour);
+  }
+  s += svg_and_png("ruiz", plot + "\n", 1000, 600);
   return s;
 }
 
@@ -152,24 +169,29 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const Phase& top,
+std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const std::vector<RecordPhases>& states,
                                         const std::vector<StressMap>& maps, const CycleStage& cycle,
                                         const WearStage* wear) {
   const auto t0 = std::chrono::steady_clock::now();
-  const StressMap *map_top = find_map(maps, "top"), *map_bottom = find_map(maps, "bottom");
-  if (!map_top || !map_bottom) return std::nullopt;
   auto out = std::make_optional<FatigueStage>();
-  out->swt = swt_map(*map_top, *map_bottom, scene.specimen, scene.plane);
-  if (cycle.result.regime != Regime::gross_slip) {
-    // The slip of the state the maps show: the cycle's peak-to-peak range, or the last wear record's slip travelled
-    // per cycle, which is twice the range (each slip-zone point runs over its range once each way).
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const double cycles = states[k].cycles;
+    const StressMap *map_top = find_map(maps, cycles, "top"), *map_bottom = find_map(maps, cycles, "bottom");
+    if (!map_top || !map_bottom) return std::nullopt;
+    FatigueRecord& rec = out->records.emplace_back();
+    rec.cycles = cycles;
+    rec.swt = swt_map(*map_top, *map_bottom, scene.specimen, scene.plane);
+    if (cycle.result.regime == Regime::gross_slip) continue;
+    // The slip of the state the maps show: the cycle's peak-to-peak range, or the wear record's slip travelled per
+    // cycle, which is twice the range (each slip-zone point runs over its range once each way).
     std::vector<double> range = cycle.result.slip_range;
-    if (wear && !wear->records.empty() && wear->records.back().s.size() == std::size_t(grid.n)) {
-      range = wear->records.back().s;
+    if (wear && k < wear->records.size() && wear->records[k].s.size() == std::size_t(grid.n)) {
+      range = wear->records[k].s;
       for (double& v : range) v *= 0.5;
     }
+    const Phase& top = states[k].phases.front();
     if (range.size() == std::size_t(grid.n))
-      out->ruiz = ruiz_along_surface(SurfaceTractions{grid, top.p, top.q, top.sigma_bulk}, range);
+      rec.ruiz = ruiz_along_surface(SurfaceTractions{grid, top.p, top.q, top.sigma_bulk}, range);
   }
   out->seconds = seconds_since(t0);
   return out;
@@ -177,14 +199,14 @@ std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, co
 
 void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& f) {
   using nlohmann::json;
-  const SwtMap& m = f.swt;
+  const SwtMap& m = f.last().swt;
   stress["swt_max"] = m.max.swt;
   stress["swt_max_x"] = m.max_x;
   stress["swt_max_y"] = m.max_y;
   stress["swt_theta_deg"] = degrees(m.max.theta);
   stress["swt_sigma_n_max"] = m.max.sigma_n_max;
   stress["swt_delta_eps_n"] = m.max.delta_eps_n;
-  const std::optional<RuizProfile>& r = f.ruiz;
+  const std::optional<RuizProfile>& r = f.last().ruiz;
   stress["ruiz_F1_max"] = r ? json(r->F1_max) : json(nullptr);
   stress["ruiz_F1_max_x"] = r ? json(r->F1_max_x) : json(nullptr);
   stress["ruiz_F2_max"] = r ? json(r->F2_max) : json(nullptr);
@@ -196,18 +218,19 @@ void write_fatigue(const Scene& scene, const NormalResult& normal, const CycleSt
                    OutputFolder& out, Written& written) {
   auto& tables = written.tables;
   auto& plots = written.plots;
-  out.write("fatigue.csv", fatigue_csv(f.swt));
+  out.write("fatigue.csv", fatigue_csv(f.records));
   tables.push_back("fatigue.csv");
-  if (f.ruiz) {
-    out.write("ruiz.csv", ruiz_csv(*f.ruiz));
+  const bool ruiz = f.last().ruiz.has_value();
+  if (ruiz) {
+    out.write("ruiz.csv", ruiz_csv(f.records));
     tables.push_back("ruiz.csv");
   }
   if (!scene.plots) return;
-  out.write("swt_map.dat", swt_map_dat(f.swt));
+  out.write("swt_map.dat", swt_map_dat(f.last().swt));
   out.write("fatigue.gp", fatigue_plot_script(scene, normal, cycle, f));
   if (!run_gnuplot(out.path(""), "fatigue.gp")) return;
   plots.insert(plots.end(), {"swt_map.png"});
-  if (f.ruiz) plots.insert(plots.end(), {"ruiz.svg", "ruiz.png"});
+  if (ruiz) plots.insert(plots.end(), {"ruiz.svg", "ruiz.png"});
 }
 
 }  // namespace fretwear

@@ -62,4 +62,11 @@ std::string cycles_label(double c) {
   return fmt::format("N = {:.3g}×10^{{{}}}", m, e);
 }
 
+std::string cycles_text(double c) {
+  if (c == 0.0) return "N = 0 (unworn)";
+  if (c < 1e4) return fmt::format("N = {:.0f}", c);
+  const int e = int(std::floor(std::log10(c) + 1e-12));
+  return fmt::format("N = {:.3g}e{}", c / std::pow(10.0, e), e);
+}
+
 }  // namespace fretwear

@@ -17,8 +17,10 @@ bool run_gnuplot(const std::filesystem::path& dir, const std::string& script_fil
 
 // A colour along a ramp from t = 0 (first record) to 1 (last), as gnuplot's rgb '#rrggbb'.
 std::string ramp(double t);
-// A cycle count for a plot's key: "N = 1e+06" and the like.
+// A cycle count for a plot's key (enhanced text): "N = 1×10^{6}" and the like.
 std::string cycles_label(double cycles);
+// The same in plain text, for a noenhanced title: "N = 1e6", "N = 2.5e6", "N = 0 (unworn)".
+std::string cycles_text(double cycles);
 
 // A number for a CSV cell: 10 significant digits, ±inf spelled out.
 std::string csv_number(double v);

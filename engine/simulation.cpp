@@ -51,9 +51,9 @@ RunResult Simulation::run(const WearControl* control) const {
   if (setup.effects.stress && reached)
     r.stress_maps = timed(r.timings.stress, [&] {
       auto maps = run_stress(scene_, model, r.normal, cycle, wear);
-      if (setup.effects.fatigue)  // the fatigue measures from the maps' top and bottom
-        r.fatigue = run_fatigue(scene_, model.grid, final_phases(scene_, r.normal, cycle, wear).front(), maps,
-                                *cycle, wear);
+      if (setup.effects.fatigue)  // the fatigue measures from each state's top and bottom maps
+        r.fatigue =
+            run_fatigue(scene_, model.grid, record_phases(scene_, r.normal, cycle, wear), maps, *cycle, wear);
       return maps;
     });
   if (setup.effects.crack && reached) {

@@ -36,10 +36,10 @@ struct RunResult {
   NormalResult normal;
   std::optional<CycleStage> cycle;
   std::optional<WearStage> wear;
-  std::vector<StressMap> stress_maps;      // at the top and bottom (initial state, and the last record when wearing)
+  std::vector<StressMap> stress_maps;      // at the top and bottom of every state (initial, then each record)
   std::vector<SifSet> sifs;                // at the top and bottom of every state (initial, then each record)
   double crack_x = 0.0;                    // where the crack is (m)
-  std::optional<FatigueStage> fatigue;     // SWT and Ruiz, with the stress maps of a cycle
+  std::optional<FatigueStage> fatigue;     // SWT and Ruiz of every state, with the stress maps of a cycle
   std::optional<LifeStage> life;           // initiation and growth over the states the run went through
   Timings timings;
   std::vector<Warning> warnings;  // what the results cannot be trusted for (engine/warnings.hpp)

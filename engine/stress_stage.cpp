@@ -59,30 +59,48 @@ set xrange [{}:{}]
 set size ratio -1
 unset key
 )", m.y.back() * 1e3, m.x.front() * 1e3, m.x.back() * 1e3);
-  s += fmt::format("set title \"{}: von Mises stress at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
+  s += fmt::format("set title \"{}: von Mises stress at the {} of the cycle (MPa), {}\" noenhanced\n", scene.name,
+                   m.phase, cycles_text(m.cycles));
   s += png_only("stress_von_mises", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($6*1e-6) with pm3d\n");
-  s += fmt::format("set title \"{}: σxx at the {} of the cycle (MPa)\" noenhanced\n", scene.name, m.phase);
+  s += fmt::format("set title \"{}: σxx at the {} of the cycle (MPa), {}\" noenhanced\n", scene.name, m.phase,
+                   cycles_text(m.cycles));
   s += png_only("stress_sxx", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d\n");
   return s;
 }
 
 }  // namespace
 
+namespace {
+
+// Every stride-th of 0 … n − 1, and n − 1.
+std::vector<std::size_t> strided(int n, int stride) {
+  std::vector<std::size_t> k;
+  for (int i = 0; i < n; i += stride) k.push_back(std::size_t(i));
+  if (k.back() != std::size_t(n - 1)) k.push_back(std::size_t(n - 1));
+  return k;
+}
+
+}  // namespace
+
 std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
-                                   double depth, const StressEffect& effect) {
+                                   double depth, const StressEffect& effect, double cycles, int stride) {
+  // The full map's points: nx across; the surface and ny rows at (j + ½) depth / ny below it.
+  std::vector<double> x_all, y_all{0.0};
+  for (int i = 0; i < effect.nx; ++i) x_all.push_back(x_lo + (x_hi - x_lo) * i / (effect.nx - 1));
+  for (int j = 0; j < effect.ny; ++j) y_all.push_back(depth * (j + 0.5) / effect.ny);
   std::vector<StressMap> out;
   for (const Phase& ph : phases) {
     const SurfaceTractions t{grid, ph.p, ph.q, ph.sigma_bulk};
     StressMap m;
     m.phase = ph.name;
-    for (int i = 0; i < effect.nx; ++i) m.x.push_back(x_lo + (x_hi - x_lo) * i / (effect.nx - 1));
-    // Depths from just below the surface (the surface itself is the traction) to `depth`.
-    for (int j = 0; j < effect.ny; ++j) m.y.push_back(depth * (j + 0.5) / effect.ny);
+    m.cycles = cycles;
+    for (std::size_t i : strided(effect.nx, stride)) m.x.push_back(x_all[i]);
+    for (std::size_t j : strided(int(y_all.size()), stride)) m.y.push_back(y_all[j]);
     m.sigma.resize(m.x.size() * m.y.size());
     for (std::size_t i = 0; i < m.x.size(); ++i) {
       const auto column = stress_along_depth(t, m.x[i], m.y);
       for (std::size_t j = 0; j < m.y.size(); ++j) m.sigma[j * m.x.size() + i] = column[j];
-      m.surface_sxx.push_back(stress_at(t, m.x[i], 0.0).xx);
+      m.surface_sxx.push_back(column.front().xx);
     }
     const double mid = 0.5 * (x_lo + x_hi);
     for (std::size_t i = 0; i < m.x.size(); ++i)
@@ -93,25 +111,44 @@ std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& p
   return out;
 }
 
+std::vector<RecordPhases> record_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle,
+                                        const WearStage* wear) {
+  if (!wear) return {{0.0, cycle_phases(scene, normal.state.p, cycle ? &cycle->result.q_top : nullptr)}};
+  std::vector<RecordPhases> out;
+  for (const WearRecord& rec : wear->records) out.push_back({rec.cycles, cycle_phases(scene, rec.p, &rec.q)});
+  return out;
+}
+
 std::vector<Phase> final_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle,
                                 const WearStage* wear) {
-  if (wear) {
-    const WearRecord& last = wear->records.back();
-    return cycle_phases(scene, last.p, &last.q);
-  }
-  return cycle_phases(scene, normal.state.p, cycle ? &cycle->result.q_top : nullptr);
+  return record_phases(scene, normal, cycle, wear).back().phases;
 }
 
 std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const NormalResult& normal,
                                   const CycleStage* cycle, const WearStage* wear) {
   const double xl = normal.zones.front().left.x, xr = normal.zones.back().right.x, half = 0.5 * (xr - xl);
   const double depth = scene.stress->depth > 0.0 ? scene.stress->depth : half;
-  return stress_maps(model.grid, final_phases(scene, normal, cycle, wear), xl - 0.5 * half, xr + 0.5 * half, depth,
-                     *scene.stress);
+  const std::vector<RecordPhases> states = record_phases(scene, normal, cycle, wear);
+  std::vector<StressMap> out;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const int stride = k + 1 == states.size() ? 1 : kRecordStride;
+    auto maps = stress_maps(model.grid, states[k].phases, xl - 0.5 * half, xr + 0.5 * half, depth, *scene.stress,
+                            states[k].cycles, stride);
+    out.insert(out.end(), std::make_move_iterator(maps.begin()), std::make_move_iterator(maps.end()));
+  }
+  return out;
 }
 
-nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& maps, const WearStage* wear) {
+std::vector<StressMap> last_record(const std::vector<StressMap>& maps) {
+  std::vector<StressMap> out;
+  for (const StressMap& m : maps)
+    if (m.cycles == maps.back().cycles) out.push_back(m);
+  return out;
+}
+
+nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& all, const WearStage* wear) {
   using nlohmann::json;
+  const std::vector<StressMap> maps = last_record(all);
   json phases = json::object();
   for (const StressMap& m : maps) {
     double vm = 0.0, vm_x = 0.0, vm_y = 0.0;
@@ -131,7 +168,8 @@ nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>
           {"depth", maps.front().y.back()}};
 }
 
-void write_stress(const Scene& scene, const std::vector<StressMap>& maps, OutputFolder& out, Written& written) {
+void write_stress(const Scene& scene, const std::vector<StressMap>& all, OutputFolder& out, Written& written) {
+  const std::vector<StressMap> maps = last_record(all);
   out.write("stress.csv", stress_csv(maps, scene.specimen.nu));
   out.write("surface_stress.csv", surface_stress_csv(maps));
   written.tables.insert(written.tables.end(), {"stress.csv", "surface_stress.csv"});

@@ -1,6 +1,7 @@
 // The stress stage: the stresses under the surface (contact/subsurface_stress.hpp) at the top and the bottom of the
-// load cycle, over a map around the contact, for the state the run ends in (the unworn contact, or the last wear
-// record).
+// load cycle, over a map around the contact, for every state the run records: the unworn contact (cycles = 0), and
+// each wear record when the scene wears. The last state's maps are at the scene's resolution; the earlier records'
+// maps, which feed the fatigue measures at every record, on a subset of the same points (kRecordStride).
 #pragma once
 
 #include <optional>
@@ -19,32 +20,57 @@
 
 namespace fretwear {
 
+// One phase's map. Rows: the surface y = 0, where σyy = −p, σxy = −q and σxx are the tractions' exact limits
+// (contact/subsurface_stress.hpp), then ny rows at y_j = (j + ½) depth / ny, j = 0 … ny − 1.
 struct StressMap {
   std::string phase;
-  std::vector<double> x, y;     // map axes (m)
+  double cycles = 0.0;          // the wear record it shows (0: the unworn contact)
+  std::vector<double> x, y;     // map axes (m); y[0] = 0
   std::vector<Stress> sigma;    // row-major: y outer, x inner
-  std::vector<double> surface_sxx;  // σxx at y = 0 per map x (Pa)
+  std::vector<double> surface_sxx;  // σxx of the surface row per map x (Pa)
   double trailing_peak = 0.0, trailing_peak_x = 0.0;  // largest surface σxx on the trailing half (Pa, m)
 };
 
-// Stress maps over [x_lo, x_hi] × [0, depth] for each phase.
-std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
-                                   double depth, const StressEffect& effect);
+// The earlier records' maps take every kRecordStride-th point of the full map across and in depth (the surface row
+// and the first column always, the last where the stride reaches it): a map at every record costs 1/stride² of the
+// last one, and its values are those of the full map at the same points.
+inline constexpr int kRecordStride = 2;
 
-// The loads of the state the run ends in: the cycle's top and bottom on the unworn contact, or on the last wear
-// record (cycle and wear may be null).
+// Stress maps over [x_lo, x_hi] × [0, depth] for each phase, on every stride-th point of the effect's nx × (ny + 1)
+// points.
+std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
+                                   double depth, const StressEffect& effect, double cycles = 0.0, int stride = 1);
+
+// The loads of one recorded state: the cycle's top and bottom (or the loaded state without a cycle).
+struct RecordPhases {
+  double cycles = 0.0;
+  std::vector<Phase> phases;
+};
+
+// The loads of every state the run records, in order: the unworn contact alone, or each wear record (the first the
+// unworn one, cycles = 0). cycle and wear may be null.
+std::vector<RecordPhases> record_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle,
+                                        const WearStage* wear);
+
+// The loads of the state the run ends in: record_phases().back().phases.
 std::vector<Phase> final_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle,
                                 const WearStage* wear);
 
 // The stage: the maps over the contact and half its width on either side, down to effects.stress.depth (the contact
-// half-width when 0), of final_phases().
+// half-width when 0), of every state of record_phases(), in its order, each state's phases together; the last state
+// on the full map, the earlier ones with stride kRecordStride.
 std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const NormalResult& normal,
                                   const CycleStage* cycle, const WearStage* wear);
 
-// Its part of summary.json: "stress" (each phase's peaks, the map's window and depth, the record it shows).
+// The maps of the last state in `maps` (run_stress's order).
+std::vector<StressMap> last_record(const std::vector<StressMap>& maps);
+
+// Its part of summary.json: "stress" (each phase's peaks, the map's window and depth, the record it shows), from
+// the last state's maps.
 nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& maps, const WearStage* wear);
 
-// stress.csv, surface_stress.csv and, with plots, stress.gp with the von Mises and σxx maps.
+// From the last state's maps: stress.csv, surface_stress.csv and, with plots, stress.gp with the von Mises and σxx
+// maps. A map at every record would make stress.csv some 3 MB per record (161 × 82 points, two phases).
 void write_stress(const Scene& scene, const std::vector<StressMap>& maps, OutputFolder& out, Written& written);
 
 }  // namespace fretwear

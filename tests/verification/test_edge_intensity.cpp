@@ -114,6 +114,42 @@ TEST_CASE("sharp flat punch: K_N = P/sqrt(pi b) at both corners, converging at f
   }
 }
 
+TEST_CASE("Hertz wear limit: K_N = P(1 - c^2/a^2)/sqrt(pi c) at both stick-zone ends, converging at first order") {
+  // The asymptote over the Hertz stick zone [−c, c], c = a √(1 − Q/fP) at Q/fP = 0.5, computed by wear_limit() on a
+  // grid aligned to ±c; the window [−2a, 2a] of n cells gives the stick zone round(n c / 2a) cells, so L = 2c/8 holds
+  // 90, 181 and 362 cells (at 1024 cells, 45: too few for kOrderMargin, the observed order there is 0.90).
+  const double P = 1e5, A = A_strain();
+  const auto hz = closed_form::hertz(P, A, kR);
+  const double c = hz.a * std::sqrt(0.5);
+  const double K = P * (1.0 - c * c / (hz.a * hz.a)) / std::sqrt(kPi * c);
+  ProfileSpec spec = test::cylinder(0.0);
+  const Profile profile(spec);
+  Zone stick;
+  stick.left = {-c, EdgeMethod::square_root_fit};
+  stick.right = {c, EdgeMethod::square_root_fit};
+  std::vector<double> errors, widths;
+  for (int n : {2048, 4096, 8192}) {
+    CAPTURE(n);
+    const Grid grid{-2.0 * hz.a, 2.0 * hz.a, n};
+    const WearLimit w = wear_limit(profile, A, grid, P, {stick});
+    REQUIRE(w.edge_intensities.size() == 1);
+    REQUIRE(w.edge_intensities[0].left);
+    REQUIRE(w.edge_intensities[0].right);
+    const double e = *w.edge_intensities[0].left / K - 1.0;
+    CAPTURE(e);
+    CHECK(*w.edge_intensities[0].right == test::rel(*w.edge_intensities[0].left, 1e-8));
+    const double h = 2.0 * c / std::round(2.0 * c / grid.h());  // the aligned grid's cell (wear_limit.hpp)
+    CHECK(std::abs(e) <= kErrorConstant * h / (kEdgeFitFraction * 2.0 * c));
+    errors.push_back(e);
+    widths.push_back(h);
+  }
+  for (std::size_t k = 1; k < errors.size(); ++k) {
+    const double q = order(errors[k - 1], errors[k], widths[k - 1], widths[k]);
+    CAPTURE(q);
+    CHECK(std::abs(q - kExpectedOrder) <= kOrderMargin);
+  }
+}
+
 TEST_CASE("an incomplete edge has no intensity: Hertz and the rounded punch give null") {
   for (ProfileType type : {ProfileType::cylinder, ProfileType::flat_rounded}) {
     ProfileSpec spec = test::cylinder(0.0);

@@ -18,7 +18,7 @@
 // h (−4.5 % in the first cell, −1.8 % in the second, +2.5 % in the third, then ε ≈ 0.09 h/r), plus the contact's own
 // first-order error. A fit that used a fixed number of cells would keep an error that no refinement removes; one over
 // [0, L] converges only like (h/L) ln(L/h). Over [s L, L] every cell has r ≥ s L, so ε = O(h/L) there and K_N converges
-// at first order in h/L (measured: order 0.95–0.99 from 1024 to 8192 cells across a sharp punch;
+// at first order in h/L (measured: order 0.95–0.99 from 512 to 4096 cells across a sharp punch;
 // tests/verification/test_edge_intensity.cpp).
 #pragma once
 

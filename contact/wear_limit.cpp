@@ -11,6 +11,28 @@
 #include "contact/normal_solver.hpp"
 
 namespace fretwear {
+namespace {
+
+// K_N at the ends of each stick zone from the complete contact's pressure p on the aligned grid, whose gap g is +∞
+// outside the zones: an end is singular where the located contact zone inside it ends at that corner.
+std::vector<EdgeIntensities> stick_edge_intensities(const Grid& aligned, const std::vector<double>& p,
+                                                    const std::vector<double>& g,
+                                                    const std::vector<Zone>& stick_zones) {
+  const std::vector<Zone> contact = locate_zones(aligned, p, g);
+  std::vector<EdgeIntensities> k(stick_zones.size());
+  for (std::size_t s = 0; s < stick_zones.size(); ++s) {
+    const double mid = 0.5 * (stick_zones[s].left.x + stick_zones[s].right.x);
+    const double length = kEdgeFitFraction * (stick_zones[s].right.x - stick_zones[s].left.x);
+    for (const Zone& z : contact) {
+      if (z.left.x > mid || z.right.x < mid) continue;  // the contact zone over this stick zone
+      if (z.left.method == EdgeMethod::corner) k[s].left = edge_intensity(aligned, p, z.left.x, +1, length);
+      if (z.right.method == EdgeMethod::corner) k[s].right = edge_intensity(aligned, p, z.right.x, -1, length);
+    }
+  }
+  return k;
+}
+
+}  // namespace
 
 WearLimit wear_limit(const Profile& profile, double A, const Grid& grid, double P,
                      const std::vector<Zone>& stick_zones) {
@@ -53,6 +75,7 @@ WearLimit wear_limit(const Profile& profile, double A, const Grid& grid, double 
     if (overlap > a.max_depth) a.max_depth = overlap, a.x_max_depth = aligned.x(i);
     a.extent = {std::min(a.extent.first, aligned.left(i)), std::max(a.extent.second, aligned.left(i + 1))};
   }
+  a.edge_intensities = stick_edge_intensities(aligned, state.p, g, stick_zones);
   // Linear interpolation between aligned centres.
   auto on_aligned = [&](const std::vector<double>& v, double x) {
     const double t = (x - aligned.x_min) / h - 0.5;

@@ -18,6 +18,10 @@
 // placed to within half a cell. p and w are then interpolated linearly onto the caller's grid (the grids differ by
 // less than a cell).
 //
+// The pressure is square-root singular at every end of a stick zone the complete contact reaches (Hertz:
+// p = P[1 + (c² − 2x²)/a²] / (π√(c² − x²)), K_N = P(1 − c²/a²)/√(πc)); its edge intensities are fitted on the aligned
+// grid, where those ends are cell boundaries (contact/edge_intensity.hpp, over kEdgeFitFraction of each zone's length).
+//
 // The caller supplies the stick zones (e.g. from the analogy route's first cycle, contact/contact_zones.hpp) and
 // decides whether the limit applies: it assumes stick zones that do not move, which holds under force control.
 #pragma once
@@ -26,6 +30,7 @@
 #include <vector>
 
 #include "contact/contact_zones.hpp"
+#include "contact/edge_intensity.hpp"
 #include "contact/grid.hpp"
 #include "contact/profile.hpp"
 
@@ -38,6 +43,9 @@ struct WearLimit {
   double max_depth = 0.0;                 // m
   double x_max_depth = 0.0;               // where w is deepest (m)
   std::pair<double, double> extent{0.0, 0.0};  // where w > 0, outer ends (m)
+  // K_N at the ends of each stick zone, left to right (Pa·m^0.5); an end is empty where the complete contact does not
+  // reach it (the pressure falls to zero inside the zone) or the zone is too short to fit.
+  std::vector<EdgeIntensities> edge_intensities;
 };
 
 // The limit for the profile on `grid` (its cell count and window), the composite compliance A (1/Pa), the normal

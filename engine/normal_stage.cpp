@@ -97,6 +97,20 @@ std::optional<Reference> closed_form_reference(const Scene& scene, const Elastic
   return ref;
 }
 
+// K_N at the contact's outer ends, each fitted over kEdgeFitFraction of its own zone where it is a corner (a located
+// square-root fall, or a zone too short to locate, is a bounded edge).
+EdgeIntensities outer_edge_intensities(const Grid& g, const std::vector<double>& p, const std::vector<Zone>& zones) {
+  EdgeIntensities k;
+  if (zones.empty()) return k;
+  const Zone& first = zones.front();
+  const Zone& last = zones.back();
+  if (first.left.method == EdgeMethod::corner)
+    k.left = edge_intensity(g, p, first.left.x, +1, kEdgeFitFraction * (first.right.x - first.left.x));
+  if (last.right.method == EdgeMethod::corner)
+    k.right = edge_intensity(g, p, last.right.x, -1, kEdgeFitFraction * (last.right.x - last.left.x));
+  return k;
+}
+
 }  // namespace
 
 NormalResult solve_normal(const Scene& scene, int cells) { return solve_normal(scene, make_model(scene, cells)); }
@@ -138,6 +152,7 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
     if (r.state.p[i] > r.p_max) r.p_max = r.state.p[i], r.x_p_max = g.x(i);
     r.cells_in_contact += r.state.p[i] > 0.0;
   }
+  r.edge_intensity = outer_edge_intensities(g, r.state.p, r.zones);
   r.reference = closed_form_reference(scene, pair, r);
   return r;
 }
@@ -151,12 +166,14 @@ nlohmann::json summarise_normal(const Scene& scene, const NormalResult& n) {
   const Edge& right = n.zones.back().right;
   double load = 0.0;
   for (double p : n.state.p) load += p * n.grid.h();
+  auto intensity = [](const std::optional<double>& k) { return k ? json(*k) : json(nullptr); };
 
   json contact = {
       {"extent", {left.x, right.x}},
       {"zones", zones},
       {"edge_method", left.method == right.method ? to_string(left.method) : "mixed"},
       {"edge_methods", {to_string(left.method), to_string(right.method)}},
+      {"edge_intensity", {intensity(n.edge_intensity.left), intensity(n.edge_intensity.right)}},
       {"p_max", n.p_max},
       {"x_p_max", n.x_p_max},
       {"cells_in_contact", n.cells_in_contact},

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/contact_zones.hpp"
+#include "contact/edge_intensity.hpp"
 #include "contact/grid.hpp"
 #include "contact/normal_solver.hpp"
 #include "contact/window.hpp"
@@ -37,6 +38,9 @@ struct NormalResult {
   ContactState state;
   SolveSummary summary;
   std::vector<Zone> zones;
+  // K_N at the outer ends of the contact (Pa·m^0.5): fitted where an end is a corner of the pad the contact reaches
+  // (complete contact: the pressure is square-root singular there), empty at an incomplete edge.
+  EdgeIntensities edge_intensity;
   double p_max = 0.0, x_p_max = 0.0;
   int cells_in_contact = 0;
   std::optional<double> load_size_half_width;  // second, independent answer for symmetric single-zone profiles

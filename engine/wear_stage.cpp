@@ -508,6 +508,25 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   return stage;
 }
 
+namespace {
+
+nlohmann::json intensity(const std::optional<double>& k) { return k ? nlohmann::json(*k) : nlohmann::json(nullptr); }
+
+// K_N at the outer ends of the asymptote's stick zones: the left end of the first, the right end of the last.
+nlohmann::json asymptote_edge_intensity(const WearAsymptote& a) {
+  if (a.edge_intensities.empty()) return nullptr;
+  return {intensity(a.edge_intensities.front().left), intensity(a.edge_intensities.back().right)};
+}
+
+// One pair [K_left, K_right] per stick zone, left to right.
+nlohmann::json asymptote_edge_intensities(const WearAsymptote& a) {
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const EdgeIntensities& k : a.edge_intensities) pairs.push_back({intensity(k.left), intensity(k.right)});
+  return pairs;
+}
+
+}  // namespace
+
 nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
   using nlohmann::json;
   const WearEffect& e = *scene.wear;
@@ -541,7 +560,9 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
        {{"worn_area", w.asymptote.worn_area},
         {"max_depth", w.asymptote.max_depth},
         {"x_max_depth", w.asymptote.x_max_depth},
-        {"extent", {w.asymptote.extent.first, w.asymptote.extent.second}}}}};
+        {"extent", {w.asymptote.extent.first, w.asymptote.extent.second}},
+        {"edge_intensity", asymptote_edge_intensity(w.asymptote)},
+        {"edge_intensities", asymptote_edge_intensities(w.asymptote)}}}};
   // Where the run got to (the last record is wear.cycles); an interrupted run stops short of cycles_target.
   // The cycle's route on the worn profile; without an asymptote (displacement control), null and the reason.
   out["route"] = w.route;

@@ -82,6 +82,20 @@ std::vector<std::size_t> strided(int n, int stride) {
 
 }  // namespace
 
+// The surface stresses at x. From piecewise-constant tractions σxx is logarithmically singular at every cell boundary
+// where q jumps (σxx ∼ (2/π) Δq ln|x − ξ_b|): an artefact of the discretisation, not of the contact, which makes a
+// surface point's value depend on how close it falls to a boundary. The discrete field converges to the continuous
+// one at the cell centres (the collocation points), so the surface row takes the values there, at the two centres
+// around x, and interpolates linearly between them (σyy = −p and σxy = −q become the same interpolation of the cell
+// tractions).
+Stress surface_stress(const SurfaceTractions& t, const Grid& grid, double x) {
+  const double u = std::clamp((x - grid.x_min) / grid.h() - 0.5, 0.0, double(grid.n - 1));
+  const int k = std::min(int(std::floor(u)), grid.n - 2);
+  const double w = u - k;
+  const Stress a = stress_at(t, grid.x(k), 0.0), b = stress_at(t, grid.x(k + 1), 0.0);
+  return {a.xx + w * (b.xx - a.xx), a.yy + w * (b.yy - a.yy), a.xy + w * (b.xy - a.xy)};
+}
+
 std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
                                    double depth, const StressEffect& effect, double cycles, int stride) {
   // The full map's points: nx across; the surface and ny rows at (j + ½) depth / ny below it.
@@ -98,7 +112,8 @@ std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& p
     for (std::size_t j : strided(int(y_all.size()), stride)) m.y.push_back(y_all[j]);
     m.sigma.resize(m.x.size() * m.y.size());
     for (std::size_t i = 0; i < m.x.size(); ++i) {
-      const auto column = stress_along_depth(t, m.x[i], m.y);
+      auto column = stress_along_depth(t, m.x[i], m.y);
+      column.front() = surface_stress(t, grid, m.x[i]);  // the first row, y = 0
       for (std::size_t j = 0; j < m.y.size(); ++j) m.sigma[j * m.x.size() + i] = column[j];
       m.surface_sxx.push_back(column.front().xx);
     }

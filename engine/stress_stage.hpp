@@ -38,6 +38,9 @@ inline constexpr int kRecordStride = 2;
 
 // Stress maps over [x_lo, x_hi] × [0, depth] for each phase, on every stride-th point of the effect's nx × (ny + 1)
 // points.
+// The surface stresses at x (y = 0): linear between the two nearest cell centres (the source says why).
+Stress surface_stress(const SurfaceTractions& t, const Grid& grid, double x);
+
 std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
                                    double depth, const StressEffect& effect, double cycles = 0.0, int stride = 1);
 

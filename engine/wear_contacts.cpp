@@ -87,7 +87,11 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
                                          "slip at x = {:.6g} m), which the analogy route cannot follow; set "
                                          "effects.tangential.route to \"incremental\"",
                                          grid.x(i)));
-    if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
+    if (!(corrective_.p[i] > 0.0)) {
+      // A worn cell without pressure still slips, 4 f (g* − g): the header says why the step needs it.
+      if (normal_.p[i] > 0.0) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
+      else if (w[i] > 0.0) out.s[i] = 4.0 * f * std::max(corrective_.gap[i] - normal_.gap[i], 0.0);
+    }
     q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
   }
   stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);

@@ -385,6 +385,21 @@ void WearRun::record(const std::vector<double>& state, double cycles) {
   for (int i = 0; i < n; ++i) g0w[i] = model_.g0[i] + state[i];
   const auto zones = locate_zones(model_.grid, r.p, g0w);
   if (!zones.empty()) rec.contact = {zones.front().left.x, zones.back().right.x};
+  // The gap of the worn profile under r.p, δ the mean over the loaded cells (as the normal solver balances it), and
+  // the extent where the bodies touch, worn flats without load included (contact/contact_zones.hpp).
+  std::vector<double> gap(n);
+  model_.kernel->apply(r.p, gap);
+  double approach = 0.0;
+  int loaded = 0;
+  for (int i = 0; i < n; ++i) {
+    gap[i] += g0w[i];
+    if (r.p[i] > 0.0) approach += gap[i], ++loaded;
+  }
+  if (loaded > 0) approach /= loaded;
+  for (double& g : gap) g -= approach;
+  const auto touching =
+      locate_touching(model_.grid, r.p, gap, g0w, kTouchingGap * model_.pair.A() * scene_.P);
+  if (!touching.empty()) rec.touching = {touching.front().left.x, touching.back().right.x};
   rec.fraction = stage_.asymptote.worn_area > 0.0 ? rec.worn_area / stage_.asymptote.worn_area : 0.0;
   stage_.records.push_back(std::move(rec));
 }
@@ -564,6 +579,7 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
       {"stick_zone_initial", interval(w.records.front().stick_zone)},
       {"stick_zone_final", interval(last.stick_zone)},
       {"contact_final", {last.contact.first, last.contact.second}},
+      {"touching_final", {last.touching.first, last.touching.second}},
       {"steps", w.steps},
       {"rejected_steps", w.rejected_steps},
       {"implicit_solves", w.implicit_solves},

@@ -61,7 +61,8 @@ struct WearRecord {
   double Q_max = 0.0;  // the tangential load at the top of the cycle (N/m): the scene's under force control, the one
                        // the prescribed δ gives on the worn profile under displacement control
   std::optional<Interval> stick_zone;
-  Interval contact{0.0, 0.0};
+  Interval contact{0.0, 0.0};   // the outer ends of the loaded contact
+  Interval touching{0.0, 0.0};  // ... and of where the bodies touch, worn flats without load included
   double fraction = 0.0;  // worn area over the asymptote's (0 without one)
   std::vector<double> w, p, s;  // per cell
   std::vector<double> q;        // shear traction at the top of the cycle per cell (Pa); the bottom is −q

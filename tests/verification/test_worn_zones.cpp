@@ -129,3 +129,19 @@ TEST_CASE("two zones (paper002_two_zone_wear) at its default grid reach the asym
   CHECK(last.worn_area == test::rel(a.cells_worn_area, kStepper));
   CHECK(std::abs(last.fraction - 1.0) < kWearAgreement);
 }
+
+TEST_CASE("a worn contact at its limit touches, unloaded, out to the asymptote's worn extent") {
+  // hertz_wear at 1e7 cycles: the loaded contact is the stick zone; the worn flats outside it touch at zero pressure
+  // out to x_e = 1.169 a, which the located touching extent matches to a cell. Unworn, the two extents coincide.
+  const Run r = run_example("hertz_wear");
+  const double h = r.model.grid.h();
+  const WearRecord& first = r.wear.records.front();
+  const WearRecord& last = r.wear.records.back();
+  CHECK(first.touching.first == first.contact.first);
+  CHECK(first.touching.second == first.contact.second);
+  REQUIRE(last.stick_zone);
+  CHECK(std::abs(last.contact.first - last.stick_zone->first) < h);
+  CHECK(std::abs(last.contact.second - last.stick_zone->second) < h);
+  CHECK(std::abs(last.touching.first - r.wear.asymptote.extent.first) < h);
+  CHECK(std::abs(last.touching.second - r.wear.asymptote.extent.second) < h);
+}

@@ -79,7 +79,7 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   const double f = *scene_.friction;
   out.p = normal_.p;
   out.s.assign(n, 0.0);
-  out.s_touching.clear();  // partial slip only (force control at Q < f P)
+  out.s_touching.clear();  // filled below only where a worn cell carries no pressure
   q_top_.resize(n);  // q = f (p − p*) at the top of the cycle
   for (int i = 0; i < n; ++i) {
     if (corrective_.p[i] > 0.0 && !(normal_.p[i] > 0.0))
@@ -87,12 +87,14 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
                                          "slip at x = {:.6g} m), which the analogy route cannot follow; set "
                                          "effects.tangential.route to \"incremental\"",
                                          grid.x(i)));
-    if (!(corrective_.p[i] > 0.0)) {
-      // A worn cell without pressure still slips, 4 f (g* − g): the header says why the step needs it.
-      if (normal_.p[i] > 0.0) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
-      else if (w[i] > 0.0) out.s[i] = 4.0 * f * std::max(corrective_.gap[i] - normal_.gap[i], 0.0);
-    }
+    if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
     q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
+  }
+  // A worn cell without pressure would slip 4 f (g* − g) on touching: the header says why the step needs it.
+  for (int i = 0; i < n; ++i) {
+    if (!(w[i] > 0.0) || normal_.p[i] > 0.0 || corrective_.p[i] > 0.0) continue;
+    if (out.s_touching.empty()) out.s_touching = out.s;
+    out.s_touching[i] = 4.0 * f * std::max(corrective_.gap[i] - normal_.gap[i], 0.0);
   }
   stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);
   out.has_stick = !stick_zones_.empty();

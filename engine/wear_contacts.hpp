@@ -79,10 +79,11 @@ class WearContact : public wear::ContactResponse {
 
 // The steady-cycle slip and stick zone on a worn profile, by the analogy route (similar bodies, constant P).
 //
-// The slip s per cycle is 4 f g* (g* the corrective problem's gap) wherever the corrective contact is open, also on a
-// worn cell that carries no pressure: there the surfaces touch (or nearly) and travel 4 f (g* − g) relative to each
-// other. The wear rate c p s is unchanged by it (p = 0), but the contact-implicit step (wear/implicit_stepper.hpp)
-// takes its shift ΔN c s from it. Near the limit the worn zones sit at zero gap and zero pressure; a worn cell given
+// The slip s per cycle is 4 f g* (g* the corrective problem's gap) where the contact is loaded and the corrective
+// contact open. A worn cell that carries no pressure would slip 4 f (g* − g) on touching (its surfaces touch, or
+// nearly, and travel that relative to each other): CycleResponse::s_touching, filled on such cells. The wear rate
+// c p s is unchanged by it (p = 0), but the contact-implicit step (wear/implicit_stepper.hpp) takes its shift ΔN c s
+// from it. Near the limit the worn zones sit at zero gap and zero pressure; a worn cell given
 // no slip there would be rigid in the step while its neighbours wear, and the step's Richardson extrapolation and its
 // rule for cells that start to wear would leave it standing proud of them by the step's error (about 1e-11 m at 1024
 // cells, against a normal solve accurate to 1e-14 m). The next plain normal solve then resolves that roughness

@@ -68,9 +68,9 @@ WornZones worn_zones(int cells) {
 }  // namespace
 
 TEST_CASE("at the wear limit the worn zones carry no load: no alternating pressure, F1 there tends to zero") {
-  // Were the worn cells held rigid once unloaded (no slip where p = 0, engine/wear_contacts.cpp), the worn zones'
-  // pressure would alternate from cell to cell: at 512 / 1024 cells 57 / 91 flips, up to 7 kPa / 1.2 MPa, F1 there
-  // 2.6e-4 / 0.12 J/m², growing with the grid. The limit's worn zones carry exactly zero (measured: no loaded cell at
+  // Were the worn cells held rigid once unloaded (no slip on touching where p = 0, engine/wear_contacts.cpp), the
+  // worn zones' pressure would alternate from cell to cell: at 512 / 1024 / 2048 cells 45 / 92 / 187 flips, up to
+  // 0.31 / 0.93 / 4.7 MPa, F1 there 0.031 / 0.098 / 0.47 J/m², growing with the grid. The limit's worn zones carry exactly zero (measured: no loaded cell at
   // any of the three grids); the bounds leave room for a stepper's last step that has not quite closed them.
   constexpr double kPressure = 1e-6;  // of p0: a step's residual wear rate, far below any cell's resolution
   constexpr double kF1 = 1e-6;        // of the first cycle's F1 peak

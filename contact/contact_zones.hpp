@@ -44,7 +44,7 @@ std::vector<Zone> locate_touching(const Grid& grid, std::span<const double> p, s
 
 // The gap below which an unloaded cell counts as touching, as a share of A P (the approach scale of a 2D contact,
 // the normal solver's gap scale): 1e-6 A P is 100 times the normal solver's default tolerance on it (the worn flats
-// of a run at its limit sit within 1e-8 A P of zero: 3–7e-14 m for hertz_wear), and a Hertz contact's gap reaches it
+// of a run at its limit sit within a few 1e-8 A P of zero: 3–7e-14 m, 2–4e-8 A P, for hertz_wear), and a Hertz contact's gap reaches it
 // within 1e-4 a of its edge, inside the first cell of any grid up to 10^4 cells across the contact.
 inline constexpr double kTouchingGap = 1e-6;
 

@@ -63,4 +63,35 @@ std::vector<Zone> locate_zones(const Grid& grid, std::span<const double> p, std:
   return zones;
 }
 
+std::vector<Zone> locate_touching(const Grid& grid, std::span<const double> p, std::span<const double> gap,
+                                  std::span<const double> g0, double touch) {
+  const std::vector<Zone> loaded = locate_zones(grid, p, g0);
+  auto edge_of = [&loaded](int cell, bool right) -> const Edge* {
+    for (const Zone& z : loaded)
+      if ((right ? z.last_cell : z.first_cell) == cell) return right ? &z.right : &z.left;
+    return nullptr;
+  };
+  std::vector<Zone> zones;
+  const int n = grid.n;
+  auto touches = [&](int i) { return p[i] > 0.0 || gap[i] <= touch; };
+  for (int i = 0; i < n;) {
+    if (!touches(i)) {
+      ++i;
+      continue;
+    }
+    int j = i;
+    while (j + 1 < n && touches(j + 1)) ++j;
+    Zone z;
+    z.first_cell = i;
+    z.last_cell = j;
+    const Edge* l = edge_of(i, false);
+    const Edge* r = edge_of(j, true);
+    z.left = l ? *l : Edge{grid.left(i), EdgeMethod::cell_boundary};
+    z.right = r ? *r : Edge{grid.left(j + 1), EdgeMethod::cell_boundary};
+    zones.push_back(z);
+    i = j + 1;
+  }
+  return zones;
+}
+
 }  // namespace fretwear

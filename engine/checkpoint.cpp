@@ -225,6 +225,7 @@ json record_json(const WearRecord& r) {
           {"Q_max", r.Q_max},
           {"stick_zone", r.stick_zone ? json{r.stick_zone->first, r.stick_zone->second} : json(nullptr)},
           {"contact", {r.contact.first, r.contact.second}},
+          {"touching", {r.touching.first, r.touching.second}},
           {"fraction", r.fraction},
           {"w", blob(r.w)},
           {"p", blob(r.p)},
@@ -241,6 +242,8 @@ WearRecord record_from(const json& j) {
   r.Q_max = j.value("Q_max", 0.0);
   if (!j.at("stick_zone").is_null()) r.stick_zone = Interval{j["stick_zone"][0], j["stick_zone"][1]};
   r.contact = {j.at("contact")[0].get<double>(), j.at("contact")[1].get<double>()};
+  if (j.contains("touching"))  // absent from checkpoints written before it was recorded
+    r.touching = {j.at("touching")[0].get<double>(), j.at("touching")[1].get<double>()};
   r.fraction = j.at("fraction").get<double>();
   r.w = unblob(j.at("w"));
   r.p = unblob(j.at("p"));

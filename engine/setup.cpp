@@ -1,5 +1,6 @@
 #include "engine/setup.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -42,6 +43,28 @@ WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowCh
                    "give grid.window");
 }
 
+// The wear run's stick zones are whole cells: those the first cycle's corrective contact loads, which it never wears
+// (engine/wear_contacts.hpp). Its limit is a complete contact whose corners are those cells' ends, while the direct
+// limit's are the located edges (contact/wear_limit.hpp); the worn area is sensitive to them (WearAsymptote, 1 % for
+// a third of a cell at 1024 cells on Hertz). So a wearing scene's window is shifted and stretched by less than a cell
+// to put cell boundaries on the first zone's located ends, as wear_limit() does for its own grid: the run's stick
+// cells then end where the limit's corners are. Other zones' ends stay within their cells, and a window that is
+// given, or aligned to the pad's corners, is kept (the warnings then say how far the run's limit is from the
+// asymptote: WearAsymptote::cells_worn_area).
+Model align_to_stick(const Scene& scene, Model m) {
+  const auto [s0, s1] = m.profile.support();
+  const auto inside = [&m](double s) { return std::isfinite(s) && s > m.grid.x_min && s < m.grid.x_max; };
+  if (inside(s0) || inside(s1)) return m;
+  const InitialStick st = initial_stick_zones(scene, m);
+  if (st.zones.empty()) return m;
+  const double l = st.zones.front().left.x, r = st.zones.front().right.x;
+  const double h = (r - l) / std::max(1.0, std::round((r - l) / m.grid.h()));
+  const double lo = l - std::round((l - m.grid.x_min) / h) * h;
+  WindowChoice w = m.window;
+  w.method += "+stick_edges";
+  return model_on(scene, Grid{lo, lo + m.grid.n * h, m.grid.n}, w);
+}
+
 }  // namespace
 
 Model make_model(const Scene& scene, int cells) {
@@ -60,8 +83,9 @@ Model make_model(const Scene& scene, int cells) {
                                  "or check load.P and the profile's size",
                                  e.what()));
   }
-  if (scene.wear) w = widen_for_wear(scene, profile, w);
-  return model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w);
+  if (!scene.wear) return model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w);
+  w = widen_for_wear(scene, profile, w);
+  return align_to_stick(scene, model_on(scene, align_to_support(profile, w.x_min, w.x_max, cells), w));
 }
 
 CyclicLoad cyclic_load(const Scene& scene, const ElasticPair& pair) {

@@ -79,7 +79,7 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   const double f = *scene_.friction;
   out.p = normal_.p;
   out.s.assign(n, 0.0);
-  out.s_touching.clear();  // partial slip only (force control at Q < f P)
+  out.s_touching.clear();  // filled below only where a worn cell carries no pressure
   q_top_.resize(n);  // q = f (p − p*) at the top of the cycle
   for (int i = 0; i < n; ++i) {
     if (corrective_.p[i] > 0.0 && !(normal_.p[i] > 0.0))
@@ -89,6 +89,12 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
                                          grid.x(i)));
     if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
     q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
+  }
+  // A worn cell without pressure would slip 4 f (g* − g) on touching: the header says why the step needs it.
+  for (int i = 0; i < n; ++i) {
+    if (!(w[i] > 0.0) || normal_.p[i] > 0.0 || corrective_.p[i] > 0.0) continue;
+    if (out.s_touching.empty()) out.s_touching = out.s;
+    out.s_touching[i] = 4.0 * f * std::max(corrective_.gap[i] - normal_.gap[i], 0.0);
   }
   stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);
   out.has_stick = !stick_zones_.empty();

@@ -217,27 +217,43 @@ set grid
 
 }  // namespace
 
-WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& /*normal*/) {
-  WearAsymptote a;
+InitialStick initial_stick_zones(const Scene& scene, const Model& model) {
+  InitialStick st;
   if (scene.control == LoadControl::displacement) {
-    a.unavailable = "under displacement control Q_max follows the prescribed displacement as the contact wears, so the "
-                    "stick zone is not the initial one: paper 002's asymptote (complete contact over the initial "
-                    "stick zone under a fixed Q) does not apply. In partial slip the wear still stops, at a complete "
-                    "contact over a stick zone whose Q is the one the displacement gives (not computed); in gross "
-                    "slip there is no stick zone and the wear never stops";
-    return a;
+    st.unavailable = "under displacement control Q_max follows the prescribed displacement as the contact wears, so "
+                     "the stick zone is not the initial one: paper 002's asymptote (complete contact over the initial "
+                     "stick zone under a fixed Q) does not apply. In partial slip the wear still stops, at a complete "
+                     "contact over a stick zone whose Q is the one the displacement gives (not computed); in gross "
+                     "slip there is no stick zone and the wear never stops";
+    return st;
   }
-  // The stick zones of the first cycle, located to sub-cell accuracy (one per run of the corrective contact).
   AnalogyContactResponse contact(scene, model, cyclic_load(scene, model.pair));
   wear::CycleResponse first;
   try {
     contact.respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);
   } catch (const UnsupportedError&) {  // reverse slip: the incremental route wears it, with no asymptote here
-    a.unavailable = "the first cycle slips backwards at the leading edge (reverse slip), where paper 002's limit, a "
-                    "complete contact over a stick zone that stays where it started, is not established: not computed";
+    st.unavailable = "the first cycle slips backwards at the leading edge (reverse slip), where paper 002's limit, a "
+                     "complete contact over a stick zone that stays where it started, is not established: not "
+                     "computed";
+    return st;
+  }
+  st.zones = contact.stick_zones();
+  return st;
+}
+
+WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& /*normal*/) {
+  WearAsymptote a;
+  InitialStick st = initial_stick_zones(scene, model);
+  if (!st.unavailable.empty()) {
+    a.unavailable = std::move(st.unavailable);
     return a;
   }
-  static_cast<WearLimit&>(a) = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, contact.stick_zones());
+  static_cast<WearLimit&>(a) = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, st.zones);
+  // The run's own limit: the same zones ending at the boundaries of the cells the corrective contact loads.
+  std::vector<Zone> cells = st.zones;
+  for (Zone& z : cells) z.left.x = model.grid.left(z.first_cell), z.right.x = model.grid.left(z.last_cell + 1);
+  if (!cells.empty())
+    a.cells_worn_area = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, cells).worn_area;
   return a;
 }
 
@@ -369,6 +385,21 @@ void WearRun::record(const std::vector<double>& state, double cycles) {
   for (int i = 0; i < n; ++i) g0w[i] = model_.g0[i] + state[i];
   const auto zones = locate_zones(model_.grid, r.p, g0w);
   if (!zones.empty()) rec.contact = {zones.front().left.x, zones.back().right.x};
+  // The gap of the worn profile under r.p, δ the mean over the loaded cells (as the normal solver balances it), and
+  // the extent where the bodies touch, worn flats without load included (contact/contact_zones.hpp).
+  std::vector<double> gap(n);
+  model_.kernel->apply(r.p, gap);
+  double approach = 0.0;
+  int loaded = 0;
+  for (int i = 0; i < n; ++i) {
+    gap[i] += g0w[i];
+    if (r.p[i] > 0.0) approach += gap[i], ++loaded;
+  }
+  if (loaded > 0) approach /= loaded;
+  for (double& g : gap) g -= approach;
+  const auto touching =
+      locate_touching(model_.grid, r.p, gap, g0w, kTouchingGap * model_.pair.A() * scene_.P);
+  if (!touching.empty()) rec.touching = {touching.front().left.x, touching.back().right.x};
   rec.fraction = stage_.asymptote.worn_area > 0.0 ? rec.worn_area / stage_.asymptote.worn_area : 0.0;
   stage_.records.push_back(std::move(rec));
 }
@@ -548,6 +579,7 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
       {"stick_zone_initial", interval(w.records.front().stick_zone)},
       {"stick_zone_final", interval(last.stick_zone)},
       {"contact_final", {last.contact.first, last.contact.second}},
+      {"touching_final", {last.touching.first, last.touching.second}},
       {"steps", w.steps},
       {"rejected_steps", w.rejected_steps},
       {"implicit_solves", w.implicit_solves},

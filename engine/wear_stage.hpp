@@ -31,9 +31,28 @@ using Interval = std::pair<double, double>;
 // changes as the contact wears and the stick zone moves with it (in partial slip the wear still stops, at a limit this
 // does not compute; in gross slip there is no stick zone and wear never stops), so the state is not computed there and
 // `unavailable` says why (w and p are then empty).
+//
+// The run on the grid tends to a limit of its own: a cell wears or not as a whole, so the stick zones it never wears
+// are the runs of cells the first cycle's corrective contact loads, whose ends are cell boundaries, while the direct
+// limit puts its corners on the located edges. `cells_worn_area` is the limit over those cells (the same solve with
+// the zones' ends moved to their cell boundaries), which the run reaches to the stepper's tolerance: the grid's share
+// of the run's distance from the asymptote. The worn area is sensitive to the stick zone's ends (Hertz at Q/fP = 0.5,
+// 1024 cells: an edge moved by a third of a cell moves it by 1 %), and this error is first order in h with a sign set
+// by where the edges fall in their cells. make_model() puts cell boundaries on the first zone's ends, which leaves
+// only the others' (engine/setup.hpp).
 struct WearAsymptote : WearLimit {
   std::string unavailable;  // empty when computed; otherwise the reason it is not
+  double cells_worn_area = 0.0;  // the limit over the run's stick cells, m² (0 without stick zones)
 };
+
+// The first cycle's stick zones on the model's grid, located to sub-cell accuracy, one per run of the corrective
+// contact (AnalogyContactResponse), or why paper 002's limit does not apply (`unavailable`: displacement control,
+// reverse slip).
+struct InitialStick {
+  std::vector<Zone> zones;
+  std::string unavailable;
+};
+InitialStick initial_stick_zones(const Scene& scene, const Model& model);
 
 // One record of the run.
 struct WearRecord {
@@ -42,7 +61,8 @@ struct WearRecord {
   double Q_max = 0.0;  // the tangential load at the top of the cycle (N/m): the scene's under force control, the one
                        // the prescribed δ gives on the worn profile under displacement control
   std::optional<Interval> stick_zone;
-  Interval contact{0.0, 0.0};
+  Interval contact{0.0, 0.0};   // the outer ends of the loaded contact
+  Interval touching{0.0, 0.0};  // ... and of where the bodies touch, worn flats without load included
   double fraction = 0.0;  // worn area over the asymptote's (0 without one)
   std::vector<double> w, p, s;  // per cell
   std::vector<double> q;        // shear traction at the top of the cycle per cell (Pa); the bottom is −q

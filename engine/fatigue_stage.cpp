@@ -197,12 +197,13 @@ std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, co
   return out;
 }
 
-void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& f) {
+void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& f, const SingularEdges& singular) {
   using nlohmann::json;
   const SwtMap& m = f.last().swt;
   stress["swt_max"] = m.max.swt;
   stress["swt_max_x"] = m.max_x;
   stress["swt_max_y"] = m.max_y;
+  stress["swt_max_singular"] = singular.at(m.max_x, m.max_y);
   stress["swt_theta_deg"] = degrees(m.max.theta);
   stress["swt_sigma_n_max"] = m.max.sigma_n_max;
   stress["swt_delta_eps_n"] = m.max.delta_eps_n;

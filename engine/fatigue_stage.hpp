@@ -48,7 +48,8 @@ std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, co
                                         const WearStage* wear);
 
 // Adds the stress.swt_* and stress.ruiz_* keys of the last record to the summary's "stress" object.
-void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& fatigue);
+// swt_max_singular: the maximum sits at a singular edge (engine/stress_stage.hpp, SingularEdges).
+void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& fatigue, const SingularEdges& singular);
 
 // fatigue.csv and ruiz.csv (every record, first column cycles) and, with plots, fatigue.gp with swt_map.png (the
 // last record) and ruiz.svg/.png (every record).

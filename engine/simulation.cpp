@@ -67,6 +67,10 @@ RunResult Simulation::run(const WearControl* control) const {
   return r;
 }
 
+SingularEdges singular_edges_of(const RunResult& r) {
+  return singular_edges(r.normal, r.cycle ? &*r.cycle : nullptr, r.wear ? &*r.wear : nullptr, r.stress_maps);
+}
+
 const std::vector<StageOutputs>& stage_outputs() {
   using nlohmann::json;
   static const std::vector<StageOutputs> stages = {
@@ -82,13 +86,15 @@ const std::vector<StageOutputs>& stage_outputs() {
        }},
       {"stress", &Timings::stress, [](const RunResult& r) { return !r.stress_maps.empty(); },
        [](const Scene& s, const RunResult& r, json& j) {
-         j["stress"] = summarise_stress(s, r.stress_maps, r.wear ? &*r.wear : nullptr);
+         j["stress"] = summarise_stress(s, r.stress_maps, r.wear ? &*r.wear : nullptr, singular_edges_of(r));
        },
        [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
          write_stress(s, r.stress_maps, out, w);
        }},
       {nullptr, nullptr, [](const RunResult& r) { return r.fatigue.has_value(); },  // SWT and Ruiz, within stress
-       [](const Scene&, const RunResult& r, json& j) { add_fatigue_summary(j["stress"], *r.fatigue); },
+       [](const Scene&, const RunResult& r, json& j) {
+         add_fatigue_summary(j["stress"], *r.fatigue, singular_edges_of(r));
+       },
        [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
          write_fatigue(s, r.normal, *r.cycle, *r.fatigue, out, w);
        }},

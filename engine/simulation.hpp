@@ -69,6 +69,9 @@ struct StageOutputs {
 // The stages after the normal one (whose part is the summary's top level and contact.csv), in the order they run.
 const std::vector<StageOutputs>& stage_outputs();
 
+// The singular edges of the state a run's stress maps show (engine/stress_stage.hpp).
+SingularEdges singular_edges_of(const RunResult& result);
+
 // summary.json (SCENES.md's contract).
 nlohmann::json make_summary(const Scene& scene, const RunResult& result);
 

@@ -161,7 +161,30 @@ std::vector<StressMap> last_record(const std::vector<StressMap>& maps) {
   return out;
 }
 
-nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& all, const WearStage* wear) {
+bool SingularEdges::at(double px, double py) const {
+  if (py > reach) return false;
+  return std::any_of(x.begin(), x.end(), [&](double e) { return std::abs(px - e) <= reach; });
+}
+
+SingularEdges singular_edges(const NormalResult& normal, const CycleStage* cycle, const WearStage* wear,
+                             const std::vector<StressMap>& maps) {
+  SingularEdges e;
+  if (normal.edge_intensity.left) e.x.push_back(normal.zones.front().left.x);
+  if (normal.edge_intensity.right) e.x.push_back(normal.zones.back().right.x);
+  const bool at_limit = wear && wear->asymptote.unavailable.empty() && wear->records.back().fraction >= kNearLimit;
+  if (at_limit && cycle)
+    for (const Interval& z : cycle->result.stick_zones) e.x.insert(e.x.end(), {z.first, z.second});
+  // Two cells of the grid, or two spacings of the map (across, and from the surface to the next row) if coarser:
+  // the map's largest value near a singular edge falls on one of its points next to the edge.
+  const StressMap& m = maps.back();
+  const double map_dx = m.x.size() > 1 ? m.x[1] - m.x[0] : 0.0;
+  const double map_dy = m.y.size() > 1 ? m.y[1] - m.y[0] : 0.0;
+  e.reach = 2.0 * std::max({normal.grid.h(), map_dx, map_dy});
+  return e;
+}
+
+nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& all, const WearStage* wear,
+                                const SingularEdges& singular) {
   using nlohmann::json;
   const std::vector<StressMap> maps = last_record(all);
   json phases = json::object();
@@ -174,8 +197,10 @@ nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>
       }
     phases[m.phase] = {{"surface_sxx_trailing_peak", m.trailing_peak},
                        {"surface_sxx_trailing_peak_x", m.trailing_peak_x},
+                       {"surface_sxx_trailing_peak_singular", singular.at(m.trailing_peak_x, 0.0)},
                        {"von_mises_max", vm},
-                       {"von_mises_max_at", {vm_x, vm_y}}};
+                       {"von_mises_max_at", {vm_x, vm_y}},
+                       {"von_mises_max_singular", singular.at(vm_x, vm_y)}};
   }
   return {{"phases", phases},
           {"cycles", wear ? wear->records.back().cycles : 0.0},

@@ -70,7 +70,22 @@ std::vector<StressMap> last_record(const std::vector<StressMap>& maps);
 
 // Its part of summary.json: "stress" (each phase's peaks, the map's window and depth, the record it shows), from
 // the last state's maps.
-nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& maps, const WearStage* wear);
+// Where the pressure of the state the maps show is square-root singular (PHYSICS.md, "Singular edges"): the outer
+// ends of a complete contact (the corners whose K_N the normal stage fits) and, on a worn contact at its limit (the
+// last record within kNearLimit of the asymptote's worn area), the ends of the stick zones, which wear leaves a
+// complete contact over. A stress or fatigue maximum there grows with the grid by nature: its value is reported with
+// "singular": true, and what converges is the edge's intensity K_N.
+struct SingularEdges {
+  std::vector<double> x;  // m
+  double reach = 0.0;     // m: a point within this distance of an edge (and this deep at most) sits at it
+  bool at(double px, double py) const;
+};
+constexpr double kNearLimit = 0.95;  // a worn contact this close to its asymptote's worn area is at its limit
+SingularEdges singular_edges(const NormalResult& normal, const CycleStage* cycle, const WearStage* wear,
+                             const std::vector<StressMap>& maps);
+
+nlohmann::json summarise_stress(const Scene& scene, const std::vector<StressMap>& maps, const WearStage* wear,
+                                const SingularEdges& singular);
 
 // From the last state's maps: stress.csv, surface_stress.csv and, with plots, stress.gp with the von Mises and σxx
 // maps. A map at every record would make stress.csv some 3 MB per record (161 × 82 points, two phases).

@@ -129,6 +129,28 @@ void wear_overshoot(const Scene& scene, const RunResult& r, std::vector<Warning>
                                100.0 * fraction, r.normal.grid.h(), 100.0 * grid, 100.0 * kWearAgreement)});
 }
 
+// Stress and fatigue maxima at a singular edge (engine/stress_stage.hpp, SingularEdges) grow with the grid: the
+// summary marks them, and the warning names them with what converges instead.
+void singular_maxima(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
+  const SingularEdges edges = singular_edges_of(r);
+  if (edges.x.empty()) return;
+  nlohmann::json stress = summarise_stress(scene, r.stress_maps, r.wear ? &*r.wear : nullptr, edges);
+  if (r.fatigue) add_fatigue_summary(stress, *r.fatigue, edges);
+  std::vector<std::string> names;
+  for (const auto& [phase, values] : stress["phases"].items())
+    for (const char* key : {"von_mises_max", "surface_sxx_trailing_peak"})
+      if (values[std::string(key) + "_singular"].get<bool>()) names.push_back(fmt::format("stress.phases.{}.{}", phase, key));
+  if (stress.value("swt_max_singular", false)) names.push_back("stress.swt_max");
+  if (names.empty()) return;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  out.push_back({"singular_maximum",
+                 fmt::format("{} sit{} at an edge where the pressure is square-root singular (a corner of a complete "
+                             "contact, or a stick zone's end at the wear limit): {} with the grid by nature; the edge "
+                             "intensity that converges is contact.edge_intensity or wear.asymptote.edge_intensity",
+                             list, names.size() == 1 ? "s" : "", names.size() == 1 ? "it grows" : "they grow")});
+}
+
 }  // namespace
 
 std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result) {
@@ -141,6 +163,7 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
   }
   if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out);
   if (result.wear && !result.wear->records.empty()) wear_overshoot(scene, result, out);
+  if (!result.stress_maps.empty()) singular_maxima(scene, result, out);
   return out;
 }
 

@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -179,9 +180,13 @@ TEST_CASE("run reports each stage that ran, and --verbose adds how it was solved
   for (const char* line : {"  grid: 256 cells", "  against the closed form (hertz)", "  wear asymptote (computed directly)",
                            "  wear steps: ", "  timings (s):", "  plots: pressure.svg"})
     CHECK_MESSAGE(verbose.all().find(line) != std::string::npos, line);
+  // Quiet: nothing on stdout; on stderr only the warnings (this run wears to its limit, where the stress maxima sit
+  // at the stick zone's singular ends).
   const Outcome quiet = s.fretwear({"run", "s.json", "-q"});
   REQUIRE_MESSAGE(quiet.exited(kDone), quiet.describe());
-  CHECK(quiet.all().empty());
+  CHECK(quiet.out.empty());
+  std::istringstream err(quiet.err);
+  for (std::string line; std::getline(err, line);) CHECK_MESSAGE(line.rfind("warning: ", 0) == 0, line);
 }
 
 TEST_CASE("several contact and stick zones are reported zone by zone on stdout and in the sweep's map") {

@@ -190,6 +190,18 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
                              v(k["x"]), lengths.size(), v(lengths[last]), v(k["K_I_max"][last]), v(k["K_I_min"][last]),
                              v(k["K_II_max"][last]), v(k["K_II_min"][last]));
   }
+  if (summary.contains("life")) {
+    const auto& l = summary["life"];
+    auto count = [&v](const nlohmann::json& n) { return n.is_null() ? std::string("never") : fmt::format("{:.4g}", v(n)); };
+    std::string line = fmt::format("  life ({}): total {} cycles", l["fate"].get<std::string>(), count(l["total_cycles"]));
+    if (l.contains("initiation"))
+      line += fmt::format("; initiation after {} cycles at x = {:.4e} m (SWT {:.4g} Pa, {} method)",
+                          count(l["initiation"]["cycles"]), v(l["initiation"]["x"]), v(l["initiation"]["swt"]),
+                          l["initiation"]["method"].get<std::string>());
+    if (l.contains("propagation"))
+      line += fmt::format("; growth {} cycles to {:.4e} m", count(l["propagation"]["cycles"]), v(l["final_length"]));
+    std::cout << line << "\n";
+  }
   if (verbose && summary.contains("timings")) {
     std::cout << "  timings (s):";
     for (const auto& [stage, t] : summary["timings"].items()) std::cout << fmt::format(" {} {:.3g}", stage, v(t));

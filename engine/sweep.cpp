@@ -62,6 +62,7 @@ const char* kColumns[] = {"contact.p_max",      "contact.extent",          "cont
                           "cycle.regime",       "cycle.stick_zone",        "cycle.stick_zones",
                           "cycle.dissipated_energy", "cycle.slip_max",     "wear.worn_area",
                           "wear.max_depth",     "wear.fraction_of_asymptote", "crack.K_I_max",
+                          "life.initiation.cycles", "life.propagation.cycles", "life.total_cycles", "life.fate",
                           "timings.total"};
 
 json get(const json& j, const std::string& dotted) {
@@ -221,6 +222,26 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     }
     gp += "set terminal svg size 900,600 dynamic font 'sans,12'\nset output 'sweep_map.svg'\n" + plot;
     gp += "set terminal pngcairo size 900,600 font 'sans,11'\nset output 'sweep_map.png'\nreplot\nunset output\n";
+    if (base_scene.life) {  // the life against the first varied key (a run that never fails is left out)
+      std::string life;
+      for (const auto& run : result.runs) {
+        const json total = run.status == 0 ? get(run.summary, "life.total_cycles") : json(nullptr);
+        const json init = run.status == 0 ? get(run.summary, "life.initiation.cycles") : json(nullptr);
+        if (!run.values[0].is_number()) continue;
+        life += fmt::format("{} {} {}\n", run.values[0].get<double>(),
+                            total.is_number() ? fmt::format("{}", total.get<double>()) : std::string("NaN"),
+                            init.is_number() ? fmt::format("{}", init.get<double>()) : std::string("NaN"));
+      }
+      out.write("sweep_life.dat", life);
+      gp += fmt::format("reset\nset grid\nset logscale y\nset format y '10^{{%T}}'\nset title \"{}: life "
+                        "(runs that never fail are left out)\" noenhanced\nset xlabel '{}' noenhanced\n"
+                        "set ylabel 'cycles'\nset key left top\n",
+                        base_scene.name, variations[0].key);
+      gp += svg_and_png("sweep_life", "plot 'sweep_life.dat' using 1:2 with linespoints pt 7 lw 2 lc rgb '#d62728' "
+                                      "title 'total life', '' using 1:3 with linespoints pt 6 lw 1.5 dt 2 "
+                                      "lc rgb '#1f77b4' title 'initiation'\n",
+                        900, 600);
+    }
     out.write("sweep.gp", gp);
     run_gnuplot(out.path(""), "sweep.gp");
   }

@@ -16,8 +16,8 @@ namespace fretwear {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr int kLayerDepths = 48;    // depths of the SWT layer from the surface to ℓ + the deepest wear
-constexpr int kMaxLayerPoints = 256;  // surface points across the layer
+constexpr int kLayerDepths = 24;    // depths of the SWT layer from the surface to ℓ + the deepest wear
+constexpr int kMaxLayerPoints = 128;  // surface points across the layer
 
 // One state of the run: from `cycles` on, its loads at the top and the bottom, and the specimen's wear per cell.
 struct State {

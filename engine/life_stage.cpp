@@ -17,7 +17,7 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kLayerDepths = 24;    // depths of the SWT layer from the surface to ℓ + the deepest wear
-constexpr int kMaxLayerPoints = 128;  // surface points across the layer
+constexpr int kMaxLayerPoints = 512;  // surface points across the layer: every cell centre on the default grids
 
 // One state of the run: from `cycles` on, its loads at the top and the bottom, and the specimen's wear per cell.
 struct State {

@@ -11,6 +11,7 @@
 #include "contact/subsurface_stress.hpp"
 #include "engine/crack_stage.hpp"
 #include "engine/plot.hpp"
+#include "engine/stress_stage.hpp"
 
 namespace fretwear {
 namespace {
@@ -97,7 +98,8 @@ struct Initiation {
 };
 
 // The surface points and depths of the layer: cell centres over the contact and half a half-width beyond (at most
-// kMaxLayerPoints), depths to ℓ plus the deepest wear of the specimen.
+// kMaxLayerPoints), depths to ℓ plus the deepest wear of the specimen, graded as (j/J)² toward the surface, where
+// the SWT of a contact edge varies fastest (like 1/r at a singular one).
 std::pair<std::vector<double>, std::vector<double>> layer_axes(const Grid& grid, const NormalResult& normal,
                                                                const std::vector<State>& states, double ell) {
   const double xl = normal.zones.front().left.x, xr = normal.zones.back().right.x, half = 0.5 * (xr - xl);
@@ -115,7 +117,7 @@ std::pair<std::vector<double>, std::vector<double>> layer_axes(const Grid& grid,
   const double depth = ell + w_max;
   std::vector<double> y{0.0};
   if (depth > 0.0)
-    for (int j = 1; j <= kLayerDepths; ++j) y.push_back(depth * j / kLayerDepths);
+    for (int j = 1; j <= kLayerDepths; ++j) y.push_back(depth * double(j * j) / (kLayerDepths * kLayerDepths));
   return {x, y};
 }
 
@@ -202,6 +204,7 @@ LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& n
   double N_start = 0.0;
   if (effect.initiation) {
     stage.initiation = initiate(scene, model.grid, normal, states).result;
+    stage.initiation->singular = singular_edges(normal, &cycle, wear, {}).at(stage.initiation->x, 0.0);
     N_start = stage.initiation->cycles;
   }
   if (!effect.growth) {
@@ -257,7 +260,8 @@ nlohmann::json summarise_life(const Scene& scene, const LifeStage& life) {
                          {"angle_deg", i.angle_deg},
                          {"method", scene.life->initiation->critical_distance > 0.0 ? "line" : "point"},
                          {"critical_distance", scene.life->initiation->critical_distance},
-                         {"state_cycles", i.state_cycles}};
+                         {"state_cycles", i.state_cycles},
+                         {"singular", i.singular}};
   }
   if (life.propagation) {
     out["propagation"] = {{"cycles", count(life.propagation->cycles)},

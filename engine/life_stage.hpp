@@ -43,6 +43,9 @@ struct LifeInitiationResult {
   double x = 0.0, y = 0.0;         // the site (m): a surface point, y = 0
   double angle_deg = 0.0;          // the critical plane's normal at the site, from +x toward +y (degrees)
   double state_cycles = 0.0;       // the cycle count of the state in force then
+  // The site is at a singular edge (engine/stress_stage.hpp, SingularEdges): its point SWT grows like 1/h with the
+  // grid; the line method's grows only like ln(ℓ/h) (SWT ∝ 1/r there) and is the one to use.
+  bool singular = false;
   std::vector<double> map_x, map_y;  // the damage map's axes (m): depths below the surface of that state
   std::vector<double> damage;        // row-major, y outer: Miner's damage at the initiation (or per cycle, if never)
 };

@@ -176,9 +176,12 @@ SingularEdges singular_edges(const NormalResult& normal, const CycleStage* cycle
     for (const Interval& z : cycle->result.stick_zones) e.x.insert(e.x.end(), {z.first, z.second});
   // Two cells of the grid, or two spacings of the map (across, and from the surface to the next row) if coarser:
   // the map's largest value near a singular edge falls on one of its points next to the edge.
-  const StressMap& m = maps.back();
-  const double map_dx = m.x.size() > 1 ? m.x[1] - m.x[0] : 0.0;
-  const double map_dy = m.y.size() > 1 ? m.y[1] - m.y[0] : 0.0;
+  double map_dx = 0.0, map_dy = 0.0;  // no maps: the grid alone
+  if (!maps.empty()) {
+    const StressMap& m = maps.back();
+    map_dx = m.x.size() > 1 ? m.x[1] - m.x[0] : 0.0;
+    map_dy = m.y.size() > 1 ? m.y[1] - m.y[0] : 0.0;
+  }
   e.reach = 2.0 * std::max({normal.grid.h(), map_dx, map_dy});
   return e;
 }

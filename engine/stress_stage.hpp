@@ -81,6 +81,7 @@ struct SingularEdges {
   bool at(double px, double py) const;
 };
 constexpr double kNearLimit = 0.95;  // a worn contact this close to its asymptote's worn area is at its limit
+// maps: the stress stage's (their spacing widens the reach), or empty.
 SingularEdges singular_edges(const NormalResult& normal, const CycleStage* cycle, const WearStage* wear,
                              const std::vector<StressMap>& maps);
 

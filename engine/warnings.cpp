@@ -134,13 +134,20 @@ void wear_overshoot(const Scene& scene, const RunResult& r, std::vector<Warning>
 void singular_maxima(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
   const SingularEdges edges = singular_edges_of(r);
   if (edges.x.empty()) return;
-  nlohmann::json stress = summarise_stress(scene, r.stress_maps, r.wear ? &*r.wear : nullptr, edges);
-  if (r.fatigue) add_fatigue_summary(stress, *r.fatigue, edges);
   std::vector<std::string> names;
-  for (const auto& [phase, values] : stress["phases"].items())
-    for (const char* key : {"von_mises_max", "surface_sxx_trailing_peak"})
-      if (values[std::string(key) + "_singular"].get<bool>()) names.push_back(fmt::format("stress.phases.{}.{}", phase, key));
-  if (stress.value("swt_max_singular", false)) names.push_back("stress.swt_max");
+  if (!r.stress_maps.empty()) {
+    nlohmann::json stress = summarise_stress(scene, r.stress_maps, r.wear ? &*r.wear : nullptr, edges);
+    if (r.fatigue) add_fatigue_summary(stress, *r.fatigue, edges);
+    for (const auto& [phase, values] : stress["phases"].items())
+      for (const char* key : {"von_mises_max", "surface_sxx_trailing_peak"})
+        if (values[std::string(key) + "_singular"].get<bool>())
+          names.push_back(fmt::format("stress.phases.{}.{}", phase, key));
+    if (stress.value("swt_max_singular", false)) names.push_back("stress.swt_max");
+  }
+  if (r.life && r.life->initiation && r.life->initiation->singular)
+    names.push_back(scene.life->initiation->critical_distance > 0.0
+                        ? "life.initiation.swt (line method: it grows only like ln(l/h))"
+                        : "life.initiation.swt (point method: give effects.life.initiation.critical_distance)");
   if (names.empty()) return;
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -163,7 +170,7 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
   }
   if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out);
   if (result.wear && !result.wear->records.empty()) wear_overshoot(scene, result, out);
-  if (!result.stress_maps.empty()) singular_maxima(scene, result, out);
+  if (!result.stress_maps.empty() || result.life) singular_maxima(scene, result, out);
   return out;
 }
 

@@ -112,3 +112,29 @@ TEST_CASE("life: Miner over wear records that do not change the contact gives th
   CHECK(worn.life->initiation->x == unworn.life->initiation->x);
   CHECK(worn.life->initiation->cycles == test::rel(unworn.life->initiation->cycles, 1e-6));
 }
+
+TEST_CASE("life: at a punch's corner the point method's SWT doubles with the grid, the line method's barely moves") {
+  // A sharp flat punch (b = 0.5 mm, P = 200 kN/m, Q/fP = 0.3, 100 MPa bulk tension): p ∝ r^(−1/2) at its corners, so
+  // SWT ∝ 1/r and the point value at the cell centre next to a corner doubles as h halves; averaged over 20 µm of
+  // depth it grows only like ln(ℓ/h) (measured: 4 % and 5 % per halving). Both are marked singular.
+  auto site = [](double ell, int cells) {
+    const json j = {{"name", "punch_life"},
+                    {"materials", {{"both", {{"E", 200e9}, {"nu", 0.3}}}}},
+                    {"profile", {{"type", "flat"}, {"b", 0.5e-3}}},
+                    {"friction", 0.5},
+                    {"load", {{"P", 2e5}, {"Q", {{"ratio", 0.3}}}, {"bulk_stress", {{"amplitude", 1e8}}}}},
+                    {"grid", {{"cells", cells}}},
+                    {"effects", {{"tangential", json::object()},
+                                 {"life", {{"initiation", {{"sigma_f", 1.817e9}, {"b", -0.08}, {"eps_f", 0.35},
+                                                           {"c", -0.52}, {"critical_distance", ell}}}}}}}};
+    const RunResult r = Simulation(parse_scene(j)).run();
+    CHECK(r.life->initiation->singular);
+    return r.life->initiation->swt;
+  };
+  const double p1 = site(0.0, 512), p2 = site(0.0, 1024), l1 = site(2e-5, 512), l2 = site(2e-5, 1024),
+               l3 = site(2e-5, 2048);
+  MESSAGE(fmt::format("point: {:.6g} -> {:.6g}; line: {:.6g} -> {:.6g} -> {:.6g} Pa", p1, p2, l1, l2, l3));
+  CHECK(p2 / p1 > 1.8);
+  CHECK(l2 / l1 < 1.1);
+  CHECK(l3 / l2 < 1.1);
+}

@@ -377,7 +377,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1e9));
   auto* validate_cmd = app.add_subcommand("validate", "check a scene and report every problem; writes nothing");
   validate_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
-  app.add_subcommand("defaults", "print a scene with every default filled in");
+  std::string effect;
+  auto* defaults_cmd =
+      app.add_subcommand("defaults", "print a scene with every effect and every default filled in");
+  defaults_cmd->add_option("--effect", effect,
+                           "only this effect (with the load cycle it needs): normal, tangential, wear, stress, "
+                           "crack or life");
   int from = 128, to = 65536;
   auto* conv_cmd = app.add_subcommand("convergence", "solve the scene's normal problem on grids of doubling size");
   conv_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
@@ -415,7 +420,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run(scene_path, quiet, verbose, resume, checkpoint_every);
     if (*validate_cmd) return validate(scene_path, quiet, verbose);
     if (app.got_subcommand("defaults")) {
-      std::cout << default_scene_json().dump(2) << "\n";
+      std::cout << default_scene_json(effect).dump(2) << "\n";
       return 0;
     }
     if (*conv_cmd) return convergence(scene_path, from, to, quiet);

@@ -215,7 +215,10 @@ Scene parse_scene_text(std::string_view text, const std::string& default_name = 
                        const std::string& source = "the scene");
 // Reads a scene file and parses its text; file problems (missing, a directory, too large) are SceneErrors too.
 Scene load_scene(const std::filesystem::path& path);
-// The default scene, as `fretwear defaults` prints it.
-nlohmann::json default_scene_json();
+// The default scene, as `fretwear defaults [--effect NAME]` prints it: PHYSICS.md's Hertz contact with every effect
+// and every key written out (required ones at that case's values), or with one effect (and the load cycle it
+// needs); "normal" gives the normal contact alone. Throws InputError for an effect it does not know.
+nlohmann::json default_scene_json(const std::string& effect = "");
+std::vector<std::string> default_effect_words();
 
 }  // namespace fretwear

@@ -227,3 +227,26 @@ TEST_CASE("several contact and stick zones are reported zone by zone on stdout a
   }();
   CHECK(csv_header.find("cycle.stick_zones") != std::string::npos);
 }
+
+TEST_CASE("defaults writes every effect's keys, --effect one of them, and each is a valid scene") {
+  Scratch s;
+  const Outcome all = s.fretwear({"defaults"});
+  REQUIRE_MESSAGE(all.exited(kDone), all.describe());
+  const json scene = json::parse(all.out);
+  for (const char* effect : {"tangential", "wear", "stress", "crack", "life"})
+    CHECK_MESSAGE(scene["effects"].contains(effect), effect);
+  CHECK(scene["effects"]["wear"].contains("stepper"));          // a default written out
+  CHECK(scene["effects"]["life"]["growth"].contains("dK_th"));  // likewise
+  for (const char* effect : {"normal", "tangential", "wear", "stress", "crack", "life"}) {
+    const Outcome one = s.fretwear({"defaults", "--effect", effect});
+    REQUIRE_MESSAGE(one.exited(kDone), one.describe());
+    const json j = json::parse(one.out);
+    CHECK(j["effects"].size() == (std::string(effect) == "normal" ? 0u : std::string(effect) == "tangential" ? 1u : 2u));
+    s.write("one.json", one.out);
+    const Outcome valid = s.fretwear({"validate", "one.json", "-q"});
+    CHECK_MESSAGE(valid.exited(kDone), effect, ": ", valid.describe());
+  }
+  const Outcome bad = s.fretwear({"defaults", "--effect", "fatigue"});
+  CHECK(bad.exited(kInvalid));
+  CHECK(bad.err.find("\"fatigue\" is not an effect") != std::string::npos);
+}

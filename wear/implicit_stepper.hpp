@@ -28,13 +28,15 @@
 // touching (CycleResponse::slip_if_touching; in gross slip the bodies slide past every x alike, and the contact
 // continues s over the cells out of contact), which makes S > 0 on every cell that can be loaded and the argument
 // above hold. In partial slip the stick zone keeps s = 0 (it carries load and does not wear, as it should; it is one
-// contiguous zone set by the load, not by the cells' state) and so do the cells beyond the contact: nothing changes
-// there. What remains at a moving contact edge is the extrapolation's error: the pressure of a worn flat moves by
+// contiguous zone set by the load, not by the cells' state); the cells beyond the contact get the slip they would
+// travel there where the route knows it (the analogy route), so that the contact spreading over them is worn by
+// the one step as by the two half steps (below). What remains at a moving contact edge is the extrapolation's error: the pressure of a worn flat moves by
 // about E*/Δx per metre of wear, and the edge cells' pressure is rough by tens of percent at tolerance 1e-3 (smooth
 // at 1e-4) where the every-cycle solution is flat.
 //
-// Cells that start to wear within the step. The slip is lagged, so a cell that enters the contact (or the slip zone)
-// during the step with no slip lagged (partial slip) is not worn by the one step of ΔN at all, while the two half steps
+// Cells that start to wear within the step (where the route lags s = 0 beyond the contact: the incremental route in
+// partial slip). The slip is lagged, so a cell that enters the contact (or the slip zone)
+// during the step with no slip lagged is not worn by the one step of ΔN at all, while the two half steps
 // wear it over the second half: the difference is then first order in ΔN, not second, and extrapolating doubles the
 // half steps' increment (it assumes the cell wore from the start). Such a cell entered between N and N + ΔN/2, so it
 // wore between one and two times the half steps' increment Δ2: the midpoint w_n + 1.5 Δ2 is kept and e_i = 0.5 Δ2.

@@ -14,9 +14,10 @@
 // down by factors of 10^(1/4) until the error against cycle by cycle is ≤ 1 % and reports that run (met = 1 when it
 // took ≤ 50 steps); its time is the whole search.
 //
-// tolerance/<tol> asks whether the tolerance bounds the error it leaves: the implicit stepper at 1e-1 … 1e-5 against
-// itself at 1e-7 (kHonestReference), with counters error (the same max-norm over the records) and ratio =
-// error / tolerance. long_run/N and gross_slip_example time the wear stage of examples/hertz_wear.json (N cells) and
+// tolerance/<tol> asks whether the tolerance bounds the error it leaves: the implicit stepper at 1e-1 … 1e-4 against
+// itself at 1e-5, the tightest it runs on this case (below about 7e-6 its first step's estimate does not fall with
+// ΔN: 1e-6 ends in odeint's "a new step size was not found", 1e-7 shrinks ΔN toward 1e-305 and does not finish),
+// with counters error (the same max-norm over the records) and ratio = error / tolerance. long_run/N and gross_slip_example time the wear stage of examples/hertz_wear.json (N cells) and
 // of examples/gross_slip_displacement_wear.json (1024 cells, the incremental route in gross slip).
 #include <algorithm>
 #include <chrono>
@@ -77,15 +78,6 @@ const std::vector<WearRecord>& cycle_by_cycle_records() {
   return cbc_cache();
 }
 
-// The honesty table's reference: far below the tolerances it judges, above the floor where the contact solves'
-// residual (1e-8 of the load's scale) would set the first steps.
-constexpr double kHonestReference = 1e-7;
-
-const std::vector<WearRecord>& honest_records() {
-  static const std::vector<WearRecord> records = run("implicit", kHonestReference).records;
-  return records;
-}
-
 const std::vector<WearRecord>& tight_records() {
   static const std::vector<WearRecord> records = run("implicit", kTightTolerance).records;
   return records;
@@ -139,10 +131,10 @@ void BM_budget(benchmark::State& st) {
 }
 
 void BM_honest(benchmark::State& st, double tolerance) {
-  (void)honest_records();
+  (void)tight_records();
   WearStage w;
   for (auto _ : st) w = run("implicit", tolerance);
-  const double error = profile_error(w.records, honest_records());
+  const double error = profile_error(w.records, tight_records());
   st.counters["tolerance"] = tolerance;
   st.counters["steps"] = w.steps;
   st.counters["rejected"] = w.rejected_steps;
@@ -200,7 +192,7 @@ const bool registered = [] {
       ->Unit(benchmark::kMillisecond)
       ->Iterations(1)
       ->Repetitions(3);
-  for (double tol : {1e-1, 1e-2, 1e-3, 1e-4, 1e-5})
+  for (double tol : {1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4})
     benchmark::RegisterBenchmark(fmt::format("tolerance/{:.0e}", tol).c_str(), BM_honest, tol)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()

@@ -90,9 +90,9 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
     if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
     q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
   }
-  // A worn cell without pressure would slip 4 f (g* − g) on touching: the header says why the step needs it.
+  // A cell without pressure, worn or not, would slip 4 f (g* − g) on touching: the header says why the step needs it.
   for (int i = 0; i < n; ++i) {
-    if (!(w[i] > 0.0) || normal_.p[i] > 0.0 || corrective_.p[i] > 0.0) continue;
+    if (normal_.p[i] > 0.0 || corrective_.p[i] > 0.0 || !std::isfinite(normal_.gap[i])) continue;
     if (out.s_touching.empty()) out.s_touching = out.s;
     out.s_touching[i] = 4.0 * f * std::max(corrective_.gap[i] - normal_.gap[i], 0.0);
   }

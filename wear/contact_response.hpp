@@ -12,10 +12,10 @@ struct CycleResponse {
   std::vector<double> p;  // pressure per cell under P (Pa)
   std::vector<double> s;  // slip travelled per cycle per cell (m); 0 in the stick zone and off the contact
   // The slip a cell would travel per cycle were it touching (m), where the contact knows it: equal to s on the
-  // contact and, in gross slip, continued over the cells out of contact (the bodies slide past every x alike). The
-  // rate c p s is the same with either (p = 0 off the contact); the contact-implicit step's operator is not
-  // (wear/implicit_stepper.hpp). Empty: s itself (partial slip, where a cell out of contact or in the stick zone
-  // would not slip).
+  // contact and, off it, the relative slip of the surfaces there (the analogy route, outside the stick zone) or, in
+  // gross slip, s continued over the cells out of contact (the bodies slide past every x alike). The rate c p s is
+  // the same with either (p = 0 off the contact); the contact-implicit step's operator is not
+  // (wear/implicit_stepper.hpp). Empty: s itself (a cell out of contact or in the stick zone taken not to slip).
   std::vector<double> s_touching;
   const std::vector<double>& slip_if_touching() const { return s_touching.empty() ? s : s_touching; }
   double stick_left = 0.0, stick_right = 0.0;  // the stick zone (m); equal when there is none

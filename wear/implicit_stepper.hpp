@@ -28,22 +28,26 @@
 // touching (CycleResponse::slip_if_touching; in gross slip the bodies slide past every x alike, and the contact
 // continues s over the cells out of contact), which makes S > 0 on every cell that can be loaded and the argument
 // above hold. In partial slip the stick zone keeps s = 0 (it carries load and does not wear, as it should; it is one
-// contiguous zone set by the load, not by the cells' state) and so do the cells beyond the contact: nothing changes
-// there. What remains at a moving contact edge is the extrapolation's error: the pressure of a worn flat moves by
+// contiguous zone set by the load, not by the cells' state); the cells beyond the contact get the slip they would
+// travel there where the route knows it (the analogy route), so that the contact spreading over them is worn by
+// the one step as by the two half steps (below). What remains at a moving contact edge is the extrapolation's error: the pressure of a worn flat moves by
 // about E*/Δx per metre of wear, and the edge cells' pressure is rough by tens of percent at tolerance 1e-3 (smooth
 // at 1e-4) where the every-cycle solution is flat.
 //
-// Cells that start to wear within the step. The slip is lagged, so a cell that enters the contact (or the slip zone)
-// during the step with no slip lagged (partial slip) is not worn by the one step of ΔN at all, while the two half steps
+// Cells that start to wear within the step (where the route lags s = 0 beyond the contact: the incremental route in
+// partial slip). The slip is lagged, so a cell that enters the contact (or the slip zone)
+// during the step with no slip lagged is not worn by the one step of ΔN at all, while the two half steps
 // wear it over the second half: the difference is then first order in ΔN, not second, and extrapolating doubles the
 // half steps' increment (it assumes the cell wore from the start). Such a cell entered between N and N + ΔN/2, so it
 // wore between one and two times the half steps' increment Δ2: the midpoint w_n + 1.5 Δ2 is kept and e_i = 0.5 Δ2.
-// Measured (docs/PERFORMANCE.md, "Wear steppers"): these cells, at the outer edge of the worn zone as the contact
-// spreads, set most rejections and the largest errors of the transient; with the midpoint, 1 % costs about 40 accepted
-// steps on the benchmark's case instead of about 60, tight tolerances are unchanged, and the loosest (1e-1, 3e-2) err
-// more than before (16 % and 4.3 % against 11.5 % and 2 %, with 5 steps fewer). A cell that enters in the second half
-// is seen by neither solution (both leave it unworn) and is picked up by the next step: that error, bounded by half a
-// step of its rate, remains. Tried and not kept (measured on the same case): a mixed abs/rel norm weighting by the
+// Measured (docs/PERFORMANCE.md, "Wear steppers") when the analogy route still lagged s = 0 there: these cells, at the
+// outer edge of the worn zone as the contact spreads, set most rejections and the largest errors of the transient;
+// with the midpoint, 1 % cost about 40 accepted steps on the benchmark's case instead of about 60, tight tolerances
+// were unchanged, and the loosest (1e-1, 3e-2) erred more than before (16 % and 4.3 % against 11.5 % and 2 %, with 5
+// steps fewer). A cell that enters in the second half is seen by neither solution (both leave it unworn) and is
+// picked up by the next step: that error, bounded by half a step of its rate, remains where s = 0 is lagged. With the
+// slip on touching lagged beyond the contact (the analogy route now) the same case errs by 0.11–0.47 of the
+// tolerance from 1e-1 to 1e-4 and 1 % costs 14 steps ("Does the tolerance bound the error?"). Tried and not kept (measured on the same case): a mixed abs/rel norm weighting by the
 // local depth (more steps for the same error: it tightens the edge cells), an RMS norm (fewer steps, 2–4 % max-norm
 // errors), err^(−1/3) (the estimate is of the Euler solution, O(ΔN²), as 1/2 assumes), a PI controller (fewer
 // rejections, more accepted steps), growth caps 2–8 and safety factors 0.8–0.95 (changes within the scatter), and a

@@ -1079,13 +1079,15 @@ void IncrementalSlipSolver::HistoryRun::cycle(int c) {
   for (int j = 0; j < int(cycle_targets_.size()); ++j) {
     r.solves.push_back(step(cycle_targets_[j], c, j + 1));
     end_increment(r, prev_.Q);
+    // The pressure and the bulk strain at the top and the bottom, at any β: P and ε vary along a history, so the
+    // phases there are not the contact's pressure under load.P with ±ε.
     if (j == j_top_) {
       r.q_top = state_.q, hi_top = hi_;
-      if (coupled_) result_.p_top = p_now_;
+      result_.p_top = p_now_, result_.bulk_strain_top = prev_.eps;
     }
     if (j == j_bottom_) {
       r.q_bottom = state_.q;
-      if (coupled_) result_.p_bottom = p_now_;
+      result_.p_bottom = p_now_, result_.bulk_strain_bottom = prev_.eps;
     }
     if (j == j_unloaded_) r.q_unloaded = state_.q, hi_unloaded = hi_;
     if (j == j_reloaded_) r.q_reloaded = state_.q;

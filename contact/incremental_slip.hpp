@@ -82,7 +82,8 @@
 // above is such a coupled increment to its Q, from the increment's start (traction and pressure), so δ(Q) keeps its
 // meaning and the search is unchanged; past the stick limit the bodies slide as for β = 0. Under a load history with
 // β ≠ 0 each increment is a coupled increment under its own P (the normal half of a sweep solves for that load),
-// and the pressure at the history's top and bottom is reported as under a constant P.
+// and the pressure at the history's top and bottom is reported as under a constant P (for β = 0 too, where it is
+// the normal solution at the P of those points), with the bulk strain there.
 #pragma once
 
 #include <complex>
@@ -144,11 +145,14 @@ struct IncrementalResult {
   SolveSummary worst;               // the increment with the largest residual over the whole run
   int n_increments = 0;
   int n_iterations = 0;             // CG iterations over every increment
-  // β ≠ 0: block Gauss–Seidel sweeps over every increment, the most any increment took, and the pressure of the
-  // last cycle at its top and bottom (Pa per cell; empty when β = 0, where the pressure is the contact's).
+  // β ≠ 0: block Gauss–Seidel sweeps over every increment, the most any increment took. The pressure of the last
+  // cycle at its top and bottom (Pa per cell) for β ≠ 0 and for a load history at any β (whose P varies); empty
+  // for solve() with β = 0, where the pressure is the contact's.
   int n_coupling_sweeps = 0;
   int max_coupling_sweeps = 0;
   std::vector<double> p_top, p_bottom;
+  // A load history: the bulk strain ε at the top and the bottom of its last cycle (0 for solve(), where it is ±ε).
+  double bulk_strain_top = 0.0, bulk_strain_bottom = 0.0;
   std::vector<double> increment_energy;  // h Σ q Δw of every increment, the first loading's included (J/m)
   // Q at the end of every increment (N/m) and its rigid shift λ (m; the multiplier of the load, work-conjugate to Q:
   // over a closed cycle ∮ Q dλ is the energy dissipated, when the elastic operator is symmetric).

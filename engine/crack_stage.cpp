@@ -90,9 +90,7 @@ std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const Norm
                               const CycleStage* cycle, const WearStage* wear) {
   const CrackEffect& c = *scene.crack;
   const double x = crack_position(c, normal);
-  if (!wear)
-    return crack_sifs(model.grid, cycle_phases(scene, normal.state.p, cycle ? &cycle->result.q_top : nullptr), x, c,
-                      0.0);
+  if (!wear) return crack_sifs(model.grid, cycle_phases(scene, normal, cycle), x, c, 0.0);
   std::vector<SifSet> sifs;
   for (const WearRecord& rec : wear->records) {
     auto sets = crack_sifs(model.grid, cycle_phases(scene, rec.p, &rec.q), x, c, rec.cycles);

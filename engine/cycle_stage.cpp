@@ -16,7 +16,7 @@ std::string num(double v) { return csv_number(v); }
 
 std::string cycle_csv(const NormalResult& n, const CycleStage& st) {
   const CycleResult& c = st.result;
-  const bool coupled = !st.p_top.empty();
+  const bool coupled = st.plan.dissimilar();  // a history's p_top is not reported (CycleStage)
   std::string s = "x_m,p_Pa,q_top_Pa,q_unloaded_Pa,q_bottom_Pa,q_reloaded_Pa,slip_range_m,slip_per_cycle_m,"
                   "energy_density_J_m2";
   s += coupled ? ",p_top_Pa,p_bottom_Pa\n" : "\n";
@@ -49,7 +49,7 @@ set xrange [{}:{}]
   s += "set ylabel 'shear traction q (MPa)'\n";
   // The Coulomb bounds ±f p: with β ≠ 0 the pressure differs between the top and the bottom of the cycle.
   const std::string bounds =
-      st.p_top.empty()
+      !st.plan.dissimilar()
           ? fmt::format("'cycle.csv' skip 1 using ($1*1e3):({0}*$2*1e-6) with lines dt 3 lc rgb '#888888' title '±f p', "
                         "'' skip 1 using ($1*1e3):(-{0}*$2*1e-6) with lines dt 3 lc rgb '#888888' notitle, ",
                         f)
@@ -145,6 +145,7 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
   stage.f = plan.load.f;
   stage.Q_max = plan.load.Q_max;
   stage.bulk_stress = scene.bulk_stress;
+  stage.sigma_top = scene.bulk_stress, stage.sigma_bottom = -scene.bulk_stress;  // in phase with Q (or δ)
   const CyclicLoad& load = plan.load;
   // The datum: reference points 10 contact half-widths (or grid.reference_depth) below the contact's centre.
   const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
@@ -176,7 +177,12 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
     stage.route += fmt::format(" [beta = {:.4g}: {} coupling sweeps over {} increments, at most {}]", plan.beta,
                                r.n_coupling_sweeps, r.n_increments, r.max_coupling_sweeps);
   stage.result = r.cycles.back();
-  if (plan.dissimilar()) stage.p_top = r.p_top, stage.p_bottom = r.p_bottom;
+  if (plan.dissimilar() || history) stage.p_top = r.p_top, stage.p_bottom = r.p_bottom;
+  if (history && !r.p_top.empty()) {  // σ from the solver's ε = σ (κ₂ + 1)/(8 μ₂), linear in σ
+    const double strain_per_stress = model.pair.bulk_strain(1.0);
+    stage.sigma_top = r.bulk_strain_top / strain_per_stress;
+    stage.sigma_bottom = r.bulk_strain_bottom / strain_per_stress;
+  }
   if ((scene.control == LoadControl::displacement || history) && !stage.result.slip_range.empty())
     stage.Q_max = stage.result.Q_peak;  // the peak Q reached
   return stage;
@@ -193,6 +199,21 @@ std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p
   std::vector<double> minus(q.size());
   for (std::size_t i = 0; i < q.size(); ++i) minus[i] = -q[i];
   return {{"top", p, q, scene.bulk_stress}, {"bottom", p, minus, -scene.bulk_stress}};
+}
+
+std::vector<Phase> cycle_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle) {
+  if (!cycle || cycle->p_top.empty()) return cycle_phases(scene, normal.state.p, cycle ? &cycle->result.q_top : nullptr);
+  const CycleResult& c = cycle->result;
+  // Gross slip leaves no traction field (force control refuses it with β ≠ 0 or a history: engine/scene.cpp); at
+  // the stick limit every cell is at ±f p.
+  auto shear = [&](const std::vector<double>& q, const std::vector<double>& p, double sign) {
+    if (!q.empty()) return q;
+    std::vector<double> out(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) out[i] = sign * cycle->f * p[i];
+    return out;
+  };
+  return {{"top", cycle->p_top, shear(c.q_top, cycle->p_top, 1.0), cycle->sigma_top},
+          {"bottom", cycle->p_bottom, shear(c.q_bottom, cycle->p_bottom, -1.0), cycle->sigma_bottom}};
 }
 
 nlohmann::json summarise_cycle(const Scene& scene, const CycleStage& st) {
@@ -219,7 +240,7 @@ nlohmann::json summarise_cycle(const Scene& scene, const CycleStage& st) {
                 {"reference_x", st.reference_x},
                 {"corrective_solves", c.solves.size()}};
   if (!c.message.empty()) cycle["message"] = c.message;
-  if (!st.p_top.empty()) {  // β ≠ 0: the shear moves the pressure
+  if (st.plan.dissimilar()) {  // β ≠ 0: the shear moves the pressure
     cycle["p_max_top"] = *std::max_element(st.p_top.begin(), st.p_top.end());
     cycle["p_max_bottom"] = *std::max_element(st.p_bottom.begin(), st.p_bottom.end());
   }

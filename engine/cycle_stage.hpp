@@ -32,9 +32,14 @@ struct CycleStage {
   // The displacement datum (contact/reference_datum.hpp): reference points at depth reference_depth (m) below
   // reference_x (m), the centre of the contact under P alone.
   double reference_x = 0.0, reference_depth = 0.0;
-  // Dissimilar bodies (β ≠ 0): the pressure at the top and the bottom of the steady cycle (Pa per cell), which the
-  // shear changes; empty for similar bodies, whose pressure is the normal contact's at every instant.
+  // The pressure at the top and the bottom of the steady cycle (Pa per cell): for dissimilar bodies (β ≠ 0), where
+  // the shear changes it, and under a load history (any β), where P varies; empty otherwise, where the pressure is
+  // the normal contact's at every instant. What the run reports as the coupled pressure (cycle.csv, summary.json,
+  // pressure.gp) is this for β ≠ 0 only (plan.dissimilar()).
   std::vector<double> p_top, p_bottom;
+  // The bulk stress at the top and the bottom (Pa): ±load.bulk_stress in phase with Q (or δ), and a history's
+  // sigma_bulk where its Q is largest and smallest.
+  double sigma_top = 0.0, sigma_bottom = 0.0;
 };
 
 // One steady load cycle, by the plan. Throws UnsupportedError where the analogy, asked for, finds reverse slip.
@@ -42,9 +47,24 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
 // The same with the scene's own plan (plan_cycle).
 CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal);
 
-// The loads at the top and the bottom of the cycle (just "loaded" without one): in phase, the bottom is the top
-// reversed; q_top empty or null (gross slip) gives q = ±f p.
+// The loads at the top and the bottom of an in-phase cycle of similar bodies under a constant P (just "loaded"
+// without one), on the pressure p: the bottom is the top reversed, as the steady cycle is antisymmetric (exactly, so
+// that both edges of a symmetric contact tie); q_top empty or null (gross slip) gives q = ±f p. What each wear record
+// holds.
 std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p, const std::vector<double>* q_top);
+
+// The loads at the top and the bottom of the unworn contact's steady cycle, as solved (just "loaded" without one):
+// for similar bodies under a constant P, cycle_phases() on the normal pressure; for dissimilar bodies (β ≠ 0) and
+// under a load history, the cycle's own pressure, shear and bulk stress at each, CycleStage::p_top with
+// CycleResult::q_top and sigma_top, and p_bottom with q_bottom and sigma_bottom. The bottom is not the top reversed
+// then: with β ≠ 0 the shear moves the pressure one way at the top and another at the bottom (PHYSICS.md,
+// "Dissimilar bodies and per-body wear"), and a history's P and sigma_bulk need not be antisymmetric.
+// These are tractions on the specimen's surface: the stresses they cause in the specimen, taken as a half-plane,
+// do not depend on its elastic constants (plane elasticity with tractions given on the whole boundary: the
+// Flamant kernel carries none), so the stress, crack and life stages take them as they are, whatever the pad. The
+// strains do depend on them: the fatigue measures (SWT's strain range, the plane-strain σzz = ν (σxx + σyy) of
+// von Mises) use the specimen's E and ν, the body the stresses are in; the pad's enter only through the tractions.
+std::vector<Phase> cycle_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle);
 
 // Its part of summary.json: "cycle" (the route, the regime, the stick zones, the energy, the slip, the datum).
 nlohmann::json summarise_cycle(const Scene& scene, const CycleStage& cycle);

@@ -31,7 +31,7 @@ std::vector<State> life_states(const Scene& scene, const NormalResult& normal, c
                                const WearStage* wear) {
   std::vector<State> states;
   if (!wear) {
-    states.push_back({0.0, cycle_phases(scene, normal.state.p, &cycle.result.q_top),
+    states.push_back({0.0, cycle_phases(scene, normal, &cycle),
                       std::vector<double>(normal.state.p.size(), 0.0)});
     return states;
   }

@@ -55,7 +55,9 @@ json write_results(const Scene& scene, const RunResult& result, OutputFolder& ou
   if (result.cycle) resolved.reference_depth = result.cycle->reference_depth;  // the datum as it was used
   out.write_json("scene.resolved.json", resolved.to_json());
   Written written;
-  write_normal(scene, result.normal, result.cycle ? result.cycle->p_top : std::vector<double>{}, out, written);
+  // The coupled pressure is drawn for dissimilar bodies (a history's p_top, at β = 0, is the stages' only).
+  const bool coupled = result.cycle && result.cycle->plan.dissimilar();
+  write_normal(scene, result.normal, coupled ? result.cycle->p_top : std::vector<double>{}, out, written);
   for (const StageOutputs& stage : stage_outputs())
     if (stage.ran(result)) stage.write(scene, result, out, written);
   summary["plots"] = written.plots;

@@ -1056,9 +1056,18 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
         problems.push_back("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
                            "repeated between fixed limits of Q (load.Q) or of the displacement (load.control "
                            "\"displacement\" with load.delta)");
-      if (s.stress || s.crack || s.life)
-        problems.push_back("effects.stress, effects.crack, effects.life: their top and bottom phases assume the "
-                           "in-phase cycle of load.Q; with load.history they are not supported yet");
+      // Stress, crack and life take the history's top and bottom (the largest and the smallest Q) from the cycle;
+      // where the history slides, force control determines no traction there.
+      if ((s.stress || s.crack || s.life) && s.friction)
+        for (const auto& pt : s.history)
+          if (std::abs(pt[2]) >= *s.friction * pt[1]) {
+            problems.push_back(fmt::format(
+                "load.history: reaches |Q| = {:.6g} N/m >= f P = {:.6g} N/m at t = {:.6g}, where the bodies slide "
+                "and force control leaves the traction undetermined; effects.stress, effects.crack and effects.life "
+                "need the traction at the history's top and bottom: keep |Q| < f P at every point",
+                std::abs(pt[2]), *s.friction * pt[1], pt[0]));
+            break;
+          }
     } else if (!given.control || !given.load_read) {
       // the load control is unknown, or so is the whole load: nothing more to ask for
     } else if (given.control == LoadControl::force) {
@@ -1089,10 +1098,18 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (s.wear || s.stress || s.crack || s.life)
-        problems.push_back(dissimilar + "; effects.wear, effects.stress, effects.crack and effects.life use the "
-                                        "pressure of the uncoupled normal solve and the analogy's cycle, and with beta "
-                                        "!= 0 are not supported yet");
+      if (s.wear)
+        problems.push_back(dissimilar + "; effects.wear uses the pressure of the uncoupled normal solve and one wear "
+                                        "law for both bodies, and with beta != 0 is not supported yet");
+      // Stress, crack and life take the coupled pressure at the top and the bottom of the cycle; in gross slip under
+      // force control the incremental route solves no cycle, so there is none to take.
+      if ((s.stress || s.crack || s.life) && given.control == LoadControl::force && !given.history && s.friction &&
+          given.P_ok && given.Q && s.Q_max() >= *s.friction * s.P)
+        problems.push_back(dissimilar + fmt::format("; with load.Q = {:.6g} N/m >= f P = {:.6g} N/m the bodies slide "
+                                                    "and force control solves no coupled pressure, which "
+                                                    "effects.stress, effects.crack and effects.life need: lower "
+                                                    "load.Q or use load.control \"displacement\"",
+                                                    s.Q_max(), *s.friction * s.P));
     }
   } else {
     if (given.Q)

@@ -128,7 +128,7 @@ std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& p
 
 std::vector<RecordPhases> record_phases(const Scene& scene, const NormalResult& normal, const CycleStage* cycle,
                                         const WearStage* wear) {
-  if (!wear) return {{0.0, cycle_phases(scene, normal.state.p, cycle ? &cycle->result.q_top : nullptr)}};
+  if (!wear) return {{0.0, cycle_phases(scene, normal, cycle)}};  // the cycle's own pressure with β ≠ 0 or a history
   std::vector<RecordPhases> out;
   for (const WearRecord& rec : wear->records) out.push_back({rec.cycles, cycle_phases(scene, rec.p, &rec.q)});
   return out;

@@ -1052,10 +1052,6 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.history (the analogy needs a "
                            "constant P and Q between fixed limits); use \"auto\" or \"incremental\"");
-      if (s.wear)
-        problems.push_back("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
-                           "repeated between fixed limits of Q (load.Q) or of the displacement (load.control "
-                           "\"displacement\" with load.delta)");
       if (s.stress || s.crack || s.life)
         problems.push_back("effects.stress, effects.crack, effects.life: their top and bottom phases assume the "
                            "in-phase cycle of load.Q; with load.history they are not supported yet");
@@ -1089,10 +1085,10 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (s.wear || s.stress || s.crack || s.life)
-        problems.push_back(dissimilar + "; effects.wear, effects.stress, effects.crack and effects.life use the "
-                                        "pressure of the uncoupled normal solve and the analogy's cycle, and with beta "
-                                        "!= 0 are not supported yet");
+      if (s.stress || s.crack || s.life)
+        problems.push_back(dissimilar + "; effects.stress, effects.crack and effects.life use the pressure of the "
+                                        "uncoupled normal solve and the analogy's cycle, and with beta != 0 are not "
+                                        "supported yet (effects.wear is)");
     }
   } else {
     if (given.Q)

@@ -227,6 +227,18 @@ InitialStick initial_stick_zones(const Scene& scene, const Model& model) {
                      "slip there is no stick zone and the wear never stops";
     return st;
   }
+  if (!scene.history.empty()) {
+    st.unavailable = "under load.history P and Q move through the cycle, and paper 002's asymptote (complete contact "
+                     "over the initial stick zone of a constant P and a fixed Q) does not apply: not computed";
+    return st;
+  }
+  if (std::abs(model.pair.beta()) > 1e-12) {
+    st.unavailable = fmt::format("dissimilar bodies (Dundurs beta = {:.4g}): the shear moves the pressure through "
+                                 "the cycle, and paper 002's asymptote (similar bodies) is not established: not "
+                                 "computed",
+                                 model.pair.beta());
+    return st;
+  }
   AnalogyContactResponse contact(scene, model, cyclic_load(scene, model.pair));
   wear::CycleResponse first;
   try {

@@ -151,10 +151,14 @@ IncrementalSlipOptions incremental_options(const Scene& scene, double beta) {
 
 IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model,
                                                        const CycleStage& cycle)
+    : IncrementalContactResponse(scene, model, cycle, cycle.plan.load) {}
+
+IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model,
+                                                       const CycleStage& cycle, const CyclicLoad& load)
     : WearContact(scene, model),
       slip_(*model.kernel, incremental_options(scene, cycle.plan.beta)),
       datum_(model.grid, model.pair, cycle.reference_x, cycle.reference_depth),
-      load_(cycle.plan.load),
+      load_(load),
       beta_(cycle.plan.beta) {
   if (load_.history.empty() && !(load_.delta > 0.0) && !(load_.Q_max < load_.f * load_.P))
     throw UnsupportedError(sliding_under_force_control(load_.Q_max, load_.f * load_.P));

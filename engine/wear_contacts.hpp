@@ -147,6 +147,8 @@ class IncrementalContactResponse : public WearContact {
  public:
   // The cycle stage's load (its plan) and datum.
   IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle);
+  // Another load on the cycle stage's datum (a block of load.blocks; P and f are the scene's).
+  IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle, const CyclicLoad& load);
   // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return cycle_.q_top; }

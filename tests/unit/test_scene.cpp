@@ -656,3 +656,47 @@ TEST_CASE("the life effect's keys: wrong signs and ranges are named with what is
   stray["effects"]["life"]["growth"]["short_crack"] = "none";
   CHECK(reports(stray, "effects.life.growth.fatigue_limit", {"without short_crack"}));
 }
+
+// load.blocks (engine/scene.cpp, parse_blocks): each block one load and its cycles, every problem at its path.
+TEST_CASE("load blocks: parsed with wear, every problem named at its block") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["effects"] = {{"wear", {{"law", "archard"}, {"k", 1e-12}, {"cycles", 1000}}}};
+  j["load"]["blocks"] = {{{"Q", {{"amplitude", 2e4}}}, {"cycles", 300}},
+                         {{"history", {{0, 1e5, 1e4, 0}, {1, 1e5, -1e4, 0}, {2, 1e5, 1e4, 0}}}, {"cycles", 700}}};
+  const Scene s = parse_scene(j);
+  REQUIRE(s.blocks.size() == 2);
+  CHECK(s.Q_amplitude == 2e4);  // the first block's load is the scene's own
+  CHECK(s.blocks[1].history.size() == 3);
+  CHECK(s.to_json()["load"]["blocks"].size() == 2);
+  CHECK(!s.to_json()["load"].contains("Q"));
+  CHECK_NOTHROW(parse_scene(s.to_json()));
+
+  json bad = j;
+  bad["load"]["blocks"][1]["cycles"] = 0.5;
+  CHECK(reports(bad, "load.blocks[1].cycles", {"whole number"}));
+  bad = j;
+  bad["load"]["blocks"][0]["delta"] = 1e-6;
+  CHECK(reports(bad, "load.blocks[0]", {"exactly one of"}));
+  bad = j;
+  bad["load"]["blocks"][1]["history"][2] = {2, 1e5, 2e4, 0};
+  CHECK(reports(bad, "load.blocks[1].history[2]", {"cycle closes"}));
+  bad = j;
+  bad["load"]["blocks"][0]["Q"] = {{"amplitude", 1}, {"ratio", 0.5}};
+  CHECK(reports(bad, "load.blocks[0].Q", {"exactly one"}));
+  bad = j;
+  bad["load"]["blocks"][0]["cyles"] = 3;
+  CHECK(reports(bad, "load.blocks[0].cyles", {"unknown key"}));
+  bad = j;
+  bad["load"]["blocks"] = json::array();
+  CHECK(reports(bad, "load.blocks", {"non-empty list"}));
+  bad = j;
+  bad["load"]["Q"] = {{"ratio", 0.5}};
+  CHECK(reports(bad, "load.Q", {"given with load.blocks"}));
+  bad = j;
+  bad["effects"]["wear"]["cycles"] = 999;
+  CHECK(reports(bad, "effects.wear.cycles", {"blocks' total", "1000"}));
+  bad = j;
+  bad["effects"] = {{"tangential", json::object()}};
+  CHECK(reports(bad, "load.blocks", {"without effects.wear"}));
+}

@@ -135,3 +135,39 @@ TEST_CASE("wear between dissimilar bodies tends to the similar pair's as the mod
   CHECK(b.worn_area == test::rel(a.worn_area, kContinuity));
   CHECK(b.max_depth == test::rel(a.max_depth, kContinuity));
 }
+
+// load.blocks: two blocks of the same load, 300 and 700 cycles, wear as one of 1000 (the second block restarts the
+// stepper from the first's profile, so they agree to its tolerance: kSame = 2e-3). A second block at a smaller Q
+// wears more slowly than the same block at the first's Q, and every record names its block.
+TEST_CASE("load blocks of the same load wear as one block of their total") {
+  constexpr double kSame = 2e-3;
+  Scene one = force_wear();
+  one.blocks = {LoadBlock{kQ, std::nullopt, std::nullopt, {}, kCycles}};
+  Scene two = one;
+  two.blocks = {LoadBlock{kQ, std::nullopt, std::nullopt, {}, 300}, LoadBlock{kQ, std::nullopt, std::nullopt, {}, 700}};
+  const Run a = run(one), b = run(two);
+  const WearRecord &ra = a.wear.records.back(), &rb = b.wear.records.back();
+  MESSAGE(fmt::format("after {:g} cycles: worn area {:.6e} (two blocks) vs {:.6e} m² (one), {:+.3e}; max depth "
+                      "{:+.3e}",
+                      rb.cycles, rb.worn_area, ra.worn_area, rb.worn_area / ra.worn_area - 1.0,
+                      rb.max_depth / ra.max_depth - 1.0));
+  CHECK(rb.cycles == kCycles);
+  CHECK(rb.worn_area == test::rel(ra.worn_area, kSame));
+  CHECK(rb.max_depth == test::rel(ra.max_depth, kSame));
+  CHECK(b.wear.records.front().block == 0);
+  CHECK(rb.block == 1);
+  for (const WearRecord& r : b.wear.records) CHECK(r.block == (r.cycles < 300 || (r.cycles == 300 && r.block == 0) ? 0 : 1));
+  // The same against one block of 1000 cycles without load.blocks (the plain run): the blocks' route is the
+  // incremental one, as force_wear's.
+  Scene plain = force_wear();
+  const Run c = run(plain);
+  CHECK(ra.worn_area == test::rel(c.wear.records.back().worn_area, kSame));
+
+  // A lighter second block wears less than the same second block at the first's Q.
+  Scene lighter = two;
+  lighter.blocks[1].Q_amplitude = 0.5 * kQ;
+  const Run d = run(lighter);
+  MESSAGE(fmt::format("second block at Q/2: worn area {:.6e} m²", d.wear.records.back().worn_area));
+  CHECK(d.wear.records.back().worn_area < rb.worn_area);
+  CHECK(d.wear.records.back().worn_area > 0.0);
+}

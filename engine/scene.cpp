@@ -520,23 +520,24 @@ void parse_materials(Reader& top, Scene& s, std::vector<std::string>& problems) 
 }
 
 // load.history: points [t, P, Q, sigma_bulk] closing a cycle.
-void parse_history(const json* hv, Reader& r, Scene& s) {
+void parse_history(const json* hv, Reader& r, std::vector<std::array<double, 4>>& history,
+                   const std::string& path = "load.history") {
   const std::string what = "give a list of at least two points [t, P, Q, sigma_bulk] (s, N/m, N/m, Pa)";
   if (!hv->is_array() || hv->size() < 2) {
-    r.problem("load.history", fmt::format("{} is not {}; {}", describe(*hv),
+    r.problem(path, fmt::format("{} is not {}; {}", describe(*hv),
                                           hv->is_array() ? "long enough" : "a list", what));
   } else {
     const std::array<std::pair<const char*, Bound>, 4> point_spans{
         {{"t", time_point()}, {"P", normal_load()}, {"Q", tangential_load()}, {"sigma_bulk", stress()}}};
     for (std::size_t i = 0; i < hv->size(); ++i) {
       const json& pt = (*hv)[i];
-      const std::string at = fmt::format("load.history[{}]", i);
+      const std::string at = fmt::format("{}[{}]", path, i);
       const bool numbers = pt.is_array() && pt.size() == 4 && std::all_of(pt.begin(), pt.end(), [](const json& v) {
         return v.is_number() && std::isfinite(v.get<double>());
       });
       if (!numbers) {
         r.problem(at, fmt::format("{} is not a point [t, P, Q, sigma_bulk] of four finite numbers", describe(pt)));
-        s.history.clear();
+        history.clear();
         break;
       }
       const std::array<double, 4> v{pt[0].get<double>(), pt[1].get<double>(), pt[2].get<double>(),
@@ -548,32 +549,89 @@ void parse_history(const json* hv, Reader& r, Scene& s) {
                               point_spans[k].second.allowed);
       if (wrong) {
         r.problem(at, *wrong);
-        s.history.clear();
+        history.clear();
         break;
       }
-      if (!s.history.empty() && !(v[0] > s.history.back()[0])) {
+      if (!history.empty() && !(v[0] > history.back()[0])) {
         r.problem(at, fmt::format("t = {} does not exceed the previous {}; t must increase strictly", v[0],
-                                  s.history.back()[0]));
-        s.history.clear();
+                                  history.back()[0]));
+        history.clear();
         break;
       }
-      s.history.push_back(v);
+      history.push_back(v);
     }
-    if (!s.history.empty()) {
-      const auto& a = s.history.front();
-      const auto& b = s.history.back();
+    if (!history.empty()) {
+      const auto& a = history.front();
+      const auto& b = history.back();
       if (a[1] != b[1] || a[2] != b[2] || a[3] != b[3]) {
-        r.problem(fmt::format("load.history[{}]", s.history.size() - 1),
+        r.problem(fmt::format("{}[{}]", path, history.size() - 1),
                   fmt::format("ends the cycle at P, Q, sigma_bulk = {}, {}, {}, not where it starts ({}, {}, {}); "
                               "a cycle closes: repeat the first point's P, Q and sigma_bulk at the end",
                               b[1], b[2], b[3], a[1], a[2], a[3]));
-        s.history.clear();
+        history.clear();
       }
     }
   }
 }
 
-// load: P, Q, bulk_stress, control, delta, history.
+// load.blocks: [{"Q": {...} | "delta": d | "history": [...], "cycles": N}, ...]; the first block's load becomes the
+// scene's own (the cycle stage's), and `given` says what it gives, as if given at the top of load.
+void parse_blocks(const json* bv, Reader& r, Scene& s, Given& given, std::vector<std::string>& problems) {
+  if (!bv->is_array() || bv->empty()) {
+    r.problem("load.blocks", fmt::format("{} is not {}; give a list of blocks {{\"Q\": {{...}} or \"delta\": d or "
+                                         "\"history\": [...], \"cycles\": N}}",
+                                         describe(*bv), bv->is_array() ? "a non-empty list" : "a list"));
+    return;
+  }
+  for (std::size_t i = 0; i < bv->size(); ++i) {
+    const std::string at = fmt::format("load.blocks[{}]", i);
+    const json& b = (*bv)[i];
+    if (!b.is_object()) {
+      r.problem(at, fmt::format("{} is not an object; give {{\"Q\": {{...}} or \"delta\": d or \"history\": "
+                                "[...], \"cycles\": N}}",
+                                describe(b)));
+      continue;
+    }
+    Reader rb(b, at, problems);
+    LoadBlock block;
+    const int loads = int(b.contains("Q")) + int(b.contains("delta")) + int(b.contains("history"));
+    if (loads != 1)
+      rb.problem(at, fmt::format("gives {} loads; give exactly one of \"Q\" ({{\"amplitude\": N/m}} or "
+                                 "{{\"ratio\": Q/(fP)}}), \"delta\" (m, displacement control) or \"history\"",
+                                 loads));
+    if (const json* q = rb.object("Q", false)) {
+      Reader rq(*q, at + ".Q", problems);
+      const bool has_amplitude = q->contains("amplitude"), has_ratio = q->contains("ratio");
+      if (has_amplitude == has_ratio) {
+        rq.problem(at + ".Q", "give exactly one of \"amplitude\" (N/m) or \"ratio\" (Q/(fP))");
+        rq.find("amplitude"), rq.find("ratio");
+      } else if (has_amplitude) {
+        block.Q_amplitude = rq.number("amplitude", std::nullopt, tangential_load(0.0));
+      } else {
+        block.Q_ratio = rq.number("ratio", std::nullopt, within(0.0, spans::kMaxLoadRatio, "a ratio Q/(fP)", ""));
+      }
+      rq.finish();
+    }
+    if (rb.find("delta")) block.delta = rb.number("delta", std::nullopt, displacement_amplitude());
+    if (const json* hv = rb.find("history")) parse_history(hv, rb, block.history, at + ".history");
+    const auto cycles = rb.number("cycles", std::nullopt,
+                                  {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
+                                   "a whole number of cycles from 1 to 1e12"});
+    block.cycles = cycles.value_or(1.0);
+    rb.finish();
+    s.blocks.push_back(std::move(block));
+  }
+  if (s.blocks.empty()) return;
+  const LoadBlock& first = s.blocks.front();
+  s.Q_amplitude = first.Q_amplitude, s.Q_ratio = first.Q_ratio, s.delta = first.delta, s.history = first.history;
+  s.control = first.delta ? LoadControl::displacement : LoadControl::force;
+  given.control = s.control;
+  given.Q = first.Q_amplitude || first.Q_ratio;
+  given.delta = first.delta.has_value();
+  given.history = !first.history.empty();
+}
+
+// load: P, Q, bulk_stress, control, delta, history, blocks.
 void parse_load(Reader& top, Scene& s, Given& given, std::vector<std::string>& problems) {
   const json* l = top.object("load", true);
   if (!l) return;
@@ -617,7 +675,15 @@ void parse_load(Reader& top, Scene& s, Given& given, std::vector<std::string>& p
     s.delta = r.number("delta", std::nullopt, displacement_amplitude());
   if (const json* hv = r.find("history")) {
     given.history = true;
-    parse_history(hv, r, s);
+    parse_history(hv, r, s.history);
+  }
+  if (const json* bv = r.find("blocks")) {
+    for (const char* key : {"Q", "delta", "history", "control"})
+      if (l->contains(key))
+        r.problem(fmt::format("load.{}", key),
+                  fmt::format("given with load.blocks, whose blocks give the loads (\"Q\" or \"history\": force "
+                              "control, \"delta\": displacement control); move it into the blocks"));
+    parse_blocks(bv, r, s, given, problems);
   }
   r.finish();
 }
@@ -1040,6 +1106,28 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
     const char* who = s.tangential_implied ? "effects.wear (through the load cycle it needs)" : "effects.tangential";
     if (!given.friction)
       problems.push_back(fmt::format("friction: missing; {} needs a friction coefficient in (0, 10]", who));
+    if (!s.blocks.empty()) {
+      double total = 0.0;
+      for (const LoadBlock& b : s.blocks) total += b.cycles;
+      if (!s.wear)
+        problems.push_back("load.blocks: given without effects.wear; the cycle effect computes one steady cycle, and "
+                           "only the wear stage runs the blocks one after another: add effects.wear, or give the one "
+                           "load as load.Q, load.delta or load.history");
+      else if (s.wear->cycles != total)
+        problems.push_back(fmt::format("effects.wear.cycles: {} is not the blocks' total, {}; the wear runs "
+                                       "load.blocks once, in order: give their sum",
+                                       s.wear->cycles, total));
+      if (s.stress || s.crack || s.life)
+        problems.push_back("load.blocks: given with effects.stress, effects.crack or effects.life, whose phases "
+                           "assume one cycle; with load.blocks they are not supported yet");
+      if (s.bulk_stress != 0.0)
+        for (std::size_t i = 0; i < s.blocks.size(); ++i)
+          if (!s.blocks[i].history.empty())
+            problems.push_back(fmt::format("load.blocks[{}].history: given with load.bulk_stress, which the "
+                                           "history's sigma_bulk replaces; remove load.bulk_stress or give it in "
+                                           "every history",
+                                           i));
+    }
     if (given.history) {
       if (given.Q)
         problems.push_back("load.Q: given with load.history, which gives Q at each point; remove load.Q");
@@ -1052,10 +1140,6 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.history (the analogy needs a "
                            "constant P and Q between fixed limits); use \"auto\" or \"incremental\"");
-      if (s.wear)
-        problems.push_back("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
-                           "repeated between fixed limits of Q (load.Q) or of the displacement (load.control "
-                           "\"displacement\" with load.delta)");
       // Stress, crack and life take the history's top and bottom (the largest and the smallest Q) from the cycle;
       // where the history slides, force control determines no traction there.
       if ((s.stress || s.crack || s.life) && s.friction)
@@ -1098,9 +1182,6 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back(dissimilar + "; effects.tangential.route \"analogy\" needs similar bodies (beta = 0): "
                                         "use \"auto\" or \"incremental\"");
-      if (s.wear)
-        problems.push_back(dissimilar + "; effects.wear uses the pressure of the uncoupled normal solve and one wear "
-                                        "law for both bodies, and with beta != 0 is not supported yet");
       // Stress, crack and life take the coupled pressure at the top and the bottom of the cycle; in gross slip under
       // force control the incremental route solves no cycle, so there is none to take.
       if ((s.stress || s.crack || s.life) && given.control == LoadControl::force && !given.history && s.friction &&
@@ -1441,6 +1522,19 @@ json Scene::to_json() const {
   if (tangential) j["load"]["control"] = to_string(control);
   if (delta) j["load"]["delta"] = *delta;
   if (!history.empty()) j["load"]["history"] = history;
+  if (!blocks.empty()) {  // the first block's load stands for the scene's own: only the blocks are written
+    for (const char* key : {"Q", "delta", "history", "control"}) j["load"].erase(key);
+    json b = json::array();
+    for (const LoadBlock& block : blocks) {
+      json one = {{"cycles", block.cycles}};
+      if (block.Q_amplitude) one["Q"] = {{"amplitude", *block.Q_amplitude}};
+      if (block.Q_ratio) one["Q"] = {{"ratio", *block.Q_ratio}};
+      if (block.delta) one["delta"] = *block.delta;
+      if (!block.history.empty()) one["history"] = block.history;
+      b.push_back(std::move(one));
+    }
+    j["load"]["blocks"] = std::move(b);
+  }
   if (friction) j["friction"] = *friction;
   j["grid"] = {{"cells", cells}};
   if (window) j["grid"]["window"] = {window->first, window->second};

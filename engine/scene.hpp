@@ -119,6 +119,15 @@ struct WearEffect {
   int record_count = 16;            // when record was given as a count (log-spaced)
 };
 
+// One block of load.blocks: a loading held for a number of cycles, given as load.Q (amplitude or ratio), load.delta
+// (displacement control) or load.history; exactly one of the three. Bulk stress: load.bulk_stress for Q and delta.
+struct LoadBlock {
+  std::optional<double> Q_amplitude, Q_ratio;  // as Scene's
+  std::optional<double> delta;                 // > 0: displacement control
+  std::vector<std::array<double, 4>> history;  // as Scene's
+  double cycles = 0.0;                         // whole, ≥ 1
+};
+
 struct Scene {
   std::string name;                      // letters, digits, '_', '-', '.'; names the output folder
   PlaneState plane = PlaneState::strain;
@@ -134,6 +143,9 @@ struct Scene {
   std::optional<double> delta;           // load.delta: the amplitude of δ under displacement control (m)
   std::vector<std::array<double, 4>> history;  // load.history: [t (s), P (N/m), Q (N/m), σ_bulk (Pa)], the last
                                                // point repeating the first's P, Q, σ; empty: the cycle of load.Q
+  // load.blocks: the loadings the wear stage runs once, in order, each for its cycles (their sum is wear.cycles).
+  // The scene's own load (Q_amplitude, Q_ratio, control, delta, history) is the first block's: the cycle stage's.
+  std::vector<LoadBlock> blocks;
   std::optional<TangentialEffect> tangential;
   bool tangential_implied = false;       // added because wear needs the cycle
   std::optional<WearEffect> wear;

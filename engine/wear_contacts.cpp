@@ -15,6 +15,7 @@ using nlohmann::json;
 WearContact::WearContact(const Scene& scene, const Model& model)
     : scene_(scene),
       model_(model),
+      P_ref_(scene.P),
       solver_(*model.kernel, worn_options()),
       implicit_solver_(*model.kernel, implicit_options(model.grid.n)) {}
 
@@ -36,7 +37,7 @@ void WearContact::solve_worn(double P, ContactState& state, const char* what) {
 bool WearContact::implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
   set_gap(w);
   implicit_.p = p;
-  const SolveSummary s = implicit_solver_.solve(gap_, scene_.P, implicit_, d);
+  const SolveSummary s = implicit_solver_.solve(gap_, P_ref_, implicit_, d);
   ++implicit_solves;
   implicit_iterations += s.iterations;
   if (!s.converged()) {
@@ -138,9 +139,11 @@ std::vector<double> continued_over_gaps(std::span<const double> p, std::span<con
   return out;
 }
 
-IncrementalSlipOptions incremental_options(const Scene& scene) {
+IncrementalSlipOptions incremental_options(const Scene& scene, double beta) {
   IncrementalSlipOptions o;
   o.increments_per_cycle = scene.tangential->increments;
+  if (beta != 0.0) o.cycles = 2;  // as the cycle stage: the first cycle after the first loading is not yet steady
+  o.normal.proportioning = kWearProportioning;  // the coupled normal solves are on the worn profile
   return o;
 }
 
@@ -148,46 +151,61 @@ IncrementalSlipOptions incremental_options(const Scene& scene) {
 
 IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model,
                                                        const CycleStage& cycle)
+    : IncrementalContactResponse(scene, model, cycle, cycle.plan.load) {}
+
+IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model,
+                                                       const CycleStage& cycle, const CyclicLoad& load)
     : WearContact(scene, model),
-      slip_(*model.kernel, incremental_options(scene)),
+      slip_(*model.kernel, incremental_options(scene, cycle.plan.beta)),
       datum_(model.grid, model.pair, cycle.reference_x, cycle.reference_depth),
-      load_(cycle.plan.load) {
-  if (!scene.history.empty())
-    throw UnsupportedError("effects.wear: load.history with wear is not supported: the wear stage needs one cycle "
-                           "repeated between fixed limits of Q or of the displacement");
-  if (scene.control == LoadControl::force && !(scene.Q_max() < *scene.friction * scene.P))
-    throw UnsupportedError(sliding_under_force_control(scene.Q_max(), *scene.friction * scene.P));
+      load_(load),
+      beta_(cycle.plan.beta) {
+  if (load_.history.empty() && !(load_.delta > 0.0) && !(load_.Q_max < load_.f * load_.P))
+    throw UnsupportedError(sliding_under_force_control(load_.Q_max, load_.f * load_.P));
+  P_ref_ = load_.P;
+  for (const HistoryPoint& pt : load_.history) P_ref_ = std::max(P_ref_, pt.P);
 }
 
 void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
   const Grid& grid = model_.grid;
   const int n = grid.n;
   set_gap(w);
-  if (int(out.p.size()) == n) normal_.p = out.p;
-  solve_worn(scene_.P, normal_, "normal");
-  if (normal_.p.front() > 0.0 || normal_.p.back() > 0.0)
+  const bool own_reference = P_ref_ != load_.P;  // a history whose largest P is above load.P
+  ContactState& ref = own_reference ? reference_ : normal_;
+  if (int(out.p.size()) == n) ref.p = out.p;
+  if (own_reference) solve_worn(load_.P, normal_, "normal");
+  solve_worn(P_ref_, ref, own_reference ? "normal (the history's largest P)" : "normal");
+  if (ref.p.front() > 0.0 || ref.p.back() > 0.0)
     throw InputError(fmt::format("grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the "
                                  "contact widens as it wears (in gross slip without limit): widen grid.window, or "
                                  "wear fewer cycles",
-                                 normal_.p.front() > 0.0 ? "left" : "right",
-                                 normal_.p.front() > 0.0 ? grid.x_min : grid.x_max));
-  const IncrementalResult r = slip_.solve(normal_, load_, &datum_);
+                                 ref.p.front() > 0.0 ? "left" : "right", ref.p.front() > 0.0 ? grid.x_min : grid.x_max));
+  // The worn gap g0 + w for the history's normal solves and the coupled ones (gap_ outlives the call).
+  const NormalCoupling coupling{beta_, gap_};
+  const IncrementalResult r = load_.history.empty() ? slip_.solve(normal_, load_, &datum_, &coupling)
+                                                    : slip_.solve_history(normal_, load_, gap_, &datum_, &coupling);
   cycle_solves += r.n_increments;
   cycle_iterations += r.n_iterations;
   cycle_ = r.cycles.back();
-  if (cycle_.slip_travelled.empty())  // force control at Q ≥ f P: refused by the constructor
+  if (cycle_.slip_travelled.empty())  // Q ≥ f P at some point of the cycle under force control: the bodies slide
     throw UnsupportedError("effects.wear: " + cycle_.message);
-  out.p = normal_.p;
-  out.s = cycle_.slip_travelled;
-  for (int i = 0; i < n; ++i)
-    if (!(normal_.p[i] > 0.0)) out.s[i] = 0.0;
+  out.p = ref.p;
+  const double f = *scene_.friction;
+  // The slip the stepper's rate c p s needs: the slip travelled where the pressure is that of P (β = 0, constant P),
+  // otherwise the energy's equivalent s = e / (f p_ref) of the header (zero where p_ref = 0).
+  const bool energy = !load_.history.empty() || beta_ != 0.0;
+  out.s.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (!(ref.p[i] > 0.0)) continue;
+    out.s[i] = energy ? cycle_.energy_density[i] / (f * ref.p[i]) : cycle_.slip_travelled[i];
+  }
   out.has_stick = cycle_.stick_zone.has_value();
   out.stick_left = out.stick_right = 0.0;
   if (out.has_stick) out.stick_left = cycle_.stick_zone->first, out.stick_right = cycle_.stick_zone->second;
   // In gross slip a cell out of contact would slide as its neighbours do on touching (wear/implicit_stepper.hpp:
   // lagging it at 0 is what makes the contact-implicit step unstable there). In partial slip it would not slip.
   if (cycle_.regime == Regime::gross_slip)
-    out.s_touching = continued_over_gaps(normal_.p, out.s);
+    out.s_touching = continued_over_gaps(ref.p, out.s);
   else
     out.s_touching.clear();
 }
@@ -197,6 +215,7 @@ json IncrementalContactResponse::save() const {
   j["route"] = "incremental";
   j["normal"] = contact_state_json(normal_);
   j["implicit"] = contact_state_json(implicit_);
+  if (P_ref_ != load_.P) j["reference"] = contact_state_json(reference_);
   return j;
 }
 
@@ -204,6 +223,7 @@ void IncrementalContactResponse::restore(const json& j) {
   if (j.value("route", "") != "incremental") throw InputError("checkpoint: written by the analogy route's wear run");
   contact_state_from(j.at("normal"), normal_);
   contact_state_from(j.at("implicit"), implicit_);
+  if (j.contains("reference")) contact_state_from(j.at("reference"), reference_);
   restore_counts(j);
 }
 

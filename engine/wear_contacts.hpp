@@ -71,6 +71,7 @@ class WearContact : public wear::ContactResponse {
   }
   const Scene& scene_;
   const Model& model_;
+  double P_ref_;                  // the load of the pressure handed to the stepper: load.P, or a history's largest P
   NormalSolver solver_;           // the cycle's solves
   NormalSolver implicit_solver_;  // the contact-implicit steps'
   ContactState implicit_;
@@ -118,18 +119,41 @@ class AnalogyContactResponse : public WearContact {
   std::vector<Zone> stick_zones_;
 };
 
-// The steady cycle on a worn profile by the incremental route (contact/incremental_slip.hpp): similar bodies under
-// the scene's control, force or displacement (load.control, load.delta), through the onset of gross slip. respond(w)
-// solves the normal contact of g0 + w under P (warm-started from the last), then marches the first loading and one
-// cycle; the second of those is the steady cycle, whose slip travelled per cell is s (in gross slip, 4 times the
-// sliding amplitude plus the elastic part, over the whole contact; no stick zone). The reference points of δ are
-// those of the cycle stage (centre of the unworn contact, reference_depth below), fixed in the bodies as they wear.
-// The marching itself starts from rest each time (it is fast and has no warm start); the normal and contact-implicit
-// solves are warm-started, and save()/restore() carry those starts.
+// The steady cycle on a worn profile by the incremental route (contact/incremental_slip.hpp): under the scene's
+// control, force or displacement (load.control, load.delta), through the onset of gross slip, or through a load
+// history (load.history, each repetition one wear cycle), for similar or dissimilar bodies. respond(w) solves the
+// normal contact of g0 + w under P (warm-started from the last), then marches the first loading and the cycles on
+// the worn gap g0 + w (solve_history's normal solves at each P of the history, and the coupled normal solves of
+// β ≠ 0, take that gap); the last cycle is the steady one. The reference points of δ are those of the cycle stage
+// (centre of the unworn contact, reference_depth below), fixed in the bodies as they wear. The marching itself
+// starts from rest each time (it is fast and has no warm start); the normal and contact-implicit solves are
+// warm-started, and save()/restore() carry those starts.
+//
+// The slip s handed to the stepper, whose rate is dw/dN = c p s with p the pressure under the constant P
+// (wear/contact_response.hpp; c = k for Archard, α f for the energy law, wear/wear_law.hpp):
+//  - β = 0 and no history (the pressure is that of P all through the cycle): s is the slip travelled per cycle,
+//    Σ |Δw| over the increments (in gross slip, 4 times the sliding amplitude plus the elastic part, over the whole
+//    contact; no stick zone).
+//  - a history (P moves through the cycle), or β ≠ 0 (the shear moves the pressure): "c p s" with one p is
+//    ambiguous, and the wear is summed over the increments instead. Archard's law wears a cell by k p_j |Δw_j| in
+//    increment j, and where it slips |q_j| = f p_j, so over a cycle Δw = (k/f) Σ q_j Δw_j = (k/f) e, e the energy
+//    density per cycle (CycleResult::energy_density); the energy law gives α e. Both are c e / f. With p_ref the
+//    pressure under P on the worn profile (the one the stepper holds, and its contact-implicit step solves for),
+//        s = e / (f p_ref)   where p_ref > 0,   s = 0 elsewhere,
+//    so that c p_ref s = c e / f exactly. For an in-phase cycle under a constant P, e = f p Σ |Δw| cell by cell (a
+//    slipping cell sits at its bound), and s is the slip travelled again, to round-off: the history reduces to the
+//    force-controlled wear (tests/verification/test_wear_loads.cpp). The contact-implicit step scales the rate with
+//    the end-of-step pressure at this s, i.e. takes the energy per cycle proportional to the pressure under P.
+//    Under a history p_ref is the pressure under the history's largest P (P_ref_; load.P when that is larger),
+//    whose contact covers every cell that touches during the cycle, so no energy is left out; CycleResponse::p and
+//    the records' pressure are that pressure, and the contact-implicit step solves under that load. β ≠ 0 without
+//    a history: p_ref is the uncoupled pressure under P, on whose contact the coupled cycle dissipates.
 class IncrementalContactResponse : public WearContact {
  public:
   // The cycle stage's load (its plan) and datum.
   IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle);
+  // Another load on the cycle stage's datum (a block of load.blocks; P and f are the scene's).
+  IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle, const CyclicLoad& load);
   // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return cycle_.q_top; }
@@ -143,7 +167,9 @@ class IncrementalContactResponse : public WearContact {
   IncrementalSlipSolver slip_;
   ReferenceDatum datum_;
   CyclicLoad load_;
-  ContactState normal_;
+  double beta_ = 0.0;  // Dundurs β of the pair (0: similar bodies, uncoupled)
+  ContactState normal_;     // under load.P: where the cycle's first loading starts
+  ContactState reference_;  // under P_ref_ when it is not load.P (a history): p_ref
   CycleResult cycle_;
 };
 

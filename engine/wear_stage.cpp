@@ -26,15 +26,20 @@ std::string num(double v) { return csv_number(v); }
 
 // One row per wear record (SI); the stick-zone ends are empty when the contact slips everywhere, the fraction when
 // there is no asymptote (displacement control).
+// Under load.blocks a last column, block, names the block (from 0) whose load the record is under.
 std::string wear_history_csv(const WearStage& w) {
+  const bool blocks = !w.records.empty() && w.records.front().block >= 0;
   std::string s = "cycles,worn_area_m2,max_depth_m,fraction_of_asymptote,stick_left_m,stick_right_m,contact_left_m,"
-                  "contact_right_m,p_max_Pa\n";
+                  "contact_right_m,p_max_Pa";
+  s += blocks ? ",block\n" : "\n";
   const bool asymptote = w.asymptote.unavailable.empty();
-  for (const WearRecord& r : w.records)
-    s += fmt::format("{},{},{},{},{},{},{},{},{}\n", num(r.cycles), num(r.worn_area), num(r.max_depth),
+  for (const WearRecord& r : w.records) {
+    s += fmt::format("{},{},{},{},{},{},{},{},{}", num(r.cycles), num(r.worn_area), num(r.max_depth),
                      asymptote ? num(r.fraction) : "", r.stick_zone ? num(r.stick_zone->first) : "",
                      r.stick_zone ? num(r.stick_zone->second) : "", num(r.contact.first), num(r.contact.second),
                      num(r.p_max));
+    s += blocks ? fmt::format(",{}\n", r.block) : "\n";
+  }
   return s;
 }
 
@@ -227,6 +232,23 @@ InitialStick initial_stick_zones(const Scene& scene, const Model& model) {
                      "slip there is no stick zone and the wear never stops";
     return st;
   }
+  if (!scene.blocks.empty()) {
+    st.unavailable = "under load.blocks the load changes from block to block, and paper 002's asymptote (complete "
+                     "contact over the initial stick zone of one fixed Q) does not apply: not computed";
+    return st;
+  }
+  if (!scene.history.empty()) {
+    st.unavailable = "under load.history P and Q move through the cycle, and paper 002's asymptote (complete contact "
+                     "over the initial stick zone of a constant P and a fixed Q) does not apply: not computed";
+    return st;
+  }
+  if (std::abs(model.pair.beta()) > 1e-12) {
+    st.unavailable = fmt::format("dissimilar bodies (Dundurs beta = {:.4g}): the shear moves the pressure through "
+                                 "the cycle, and paper 002's asymptote (similar bodies) is not established: not "
+                                 "computed",
+                                 model.pair.beta());
+    return st;
+  }
   AnalogyContactResponse contact(scene, model, cyclic_load(scene, model.pair));
   wear::CycleResponse first;
   try {
@@ -319,16 +341,23 @@ std::vector<double> record_times(const WearEffect& w) {
 class WearRun {
  public:
   WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage)
+      : WearRun(scene, model, control, contact, stage, record_times(*scene.wear), std::vector<double>(model.grid.n, 0.0),
+                -1) {}
+  // One block of load.blocks: from the worn state w at times.front() through the record times, under its load.
+  WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage,
+          std::vector<double> times, std::vector<double> w, int block)
       : scene_(scene),
         effect_(*scene.wear),
         model_(model),
         control_(control),
         contact_(contact),
         stage_(stage),
-        times_(record_times(effect_)),
-        w_(std::size_t(model.grid.n), 0.0) {
+        times_(std::move(times)),
+        w_(std::move(w)),
+        block_(block) {
     stage_.cycles_reached = times_.back();  // until a stop says otherwise
   }
+  const std::vector<double>& state() const { return w_; }
 
   // Nothing slips, nothing wears: every record is of the unworn contact.
   void record_unworn() {
@@ -360,6 +389,7 @@ class WearRun {
   WearStage& stage_;
   const std::vector<double> times_;
   std::vector<double> w_;
+  int block_;
   clock::time_point last_checkpoint_;
 };
 
@@ -375,6 +405,7 @@ void WearRun::record(const std::vector<double>& state, double cycles) {
   rec.s = r.s;
   rec.q = contact_.shear_top();
   rec.Q_max = contact_.Q_top();
+  rec.block = block_;
   for (int i = 0; i < n; ++i) {
     rec.worn_area += state[i] * h;
     rec.max_depth = std::max(rec.max_depth, state[i]);
@@ -408,6 +439,8 @@ template <class Stepper, class System, class Save, class Restore>
 DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save, Restore restore) {
   DriveState s{times_.front(), dN, 0, 0};
   if (control_.resume) {
+    if (block_ >= 0)
+      throw UnsupportedError("checkpoint: a wear run under load.blocks cannot be resumed yet; run it from the start");
     const json& j = *control_.resume;
     s = resume_wear(j, scene_, w_, stage_.records);
     contact_.restore(j.at("contact"));
@@ -500,6 +533,82 @@ void WearRun::drive_implicit(double rate_max) {
 
 }  // namespace
 
+namespace {
+
+// The cyclic load of block b of load.blocks: the scene's, with the block's Q, δ or history in place of its own.
+CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlock& b) {
+  Scene one = scene;
+  one.Q_amplitude = b.Q_amplitude, one.Q_ratio = b.Q_ratio, one.delta = b.delta, one.history = b.history;
+  one.control = b.delta ? LoadControl::displacement : LoadControl::force;
+  return cyclic_load(one, pair);
+}
+
+// load.blocks, run once in order: each block's cycle on the incremental route (one route for all, as the load
+// changes between them), solved on the profile the blocks before it wore. Each block is a wear run of its own from
+// the state the last one left: a fresh stepper (its step and its cached response belong to the old load) and
+// records at the block's start and end and at the scene's record times inside it (a block's start record is the
+// same profile as the previous block's end record, under the new load). No checkpoints: a stop ends the run.
+void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle, const WearControl& control,
+                WearStage& stage) {
+  WearControl no_checkpoints = control;
+  no_checkpoints.checkpoint.clear();
+  const std::vector<double> all = record_times(*scene.wear);
+  std::vector<double> w(std::size_t(model.grid.n), 0.0);
+  double start = 0.0;
+  stage.route = "incremental (load.blocks)";
+  long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
+  for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
+    const double end = start + scene.blocks[b].cycles;
+    std::vector<double> times{start};
+    for (double t : all)
+      if (t > start && t < end) times.push_back(t);
+    times.push_back(end);
+    IncrementalContactResponse contact(scene, model, cycle, block_load(scene, model.pair, scene.blocks[b]));
+    wear::CycleResponse first;
+    contact.respond(w, first);
+    double rate_max = 0.0, s_max = 0.0;
+    for (int i = 0; i < model.grid.n; ++i) {
+      rate_max = std::max(rate_max, stage.rate_coefficient * first.p[i] * first.s[i]);
+      s_max = std::max(s_max, first.s[i]);
+    }
+    if (b == 0)
+      stage.stability_limit =
+          wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), stage.rate_coefficient, s_max);
+    WearStage part;  // the block's run; its records and counts join the stage's
+    part.rate_coefficient = stage.rate_coefficient;
+    part.asymptote = stage.asymptote;
+    part.stability_limit = stage.stability_limit;
+    WearRun run(scene, model, no_checkpoints, contact, part, times, w, int(b));
+    if (rate_max == 0.0)
+      run.record_unworn();
+    else if (scene.wear->stepper == WearStepper::explicit_capped)
+      run.drive_explicit(rate_max);
+    else if (scene.wear->stepper == WearStepper::cycle_by_cycle)
+      run.drive_cycle_by_cycle();
+    else
+      run.drive_implicit(rate_max);
+    w = run.state();
+    for (WearRecord& r : part.records) stage.records.push_back(std::move(r));
+    stage.steps += part.steps, stage.rejected_steps += part.rejected_steps;
+    stage.unconverged_steps += part.unconverged_steps, stage.implicit_solves += part.implicit_solves;
+    stage.responses += part.responses;
+    stage.explicit_step_cap = part.explicit_step_cap;
+    stage.explicit_max_step = std::max(stage.explicit_max_step, part.explicit_max_step);
+    stage.cycles_reached = part.cycles_reached;
+    cycle_solves += contact.cycle_solves, cycle_iterations += contact.cycle_iterations;
+    implicit_solves += contact.implicit_solves, implicit_iterations += contact.implicit_iterations;
+    if (part.interrupted) {
+      stage.interrupted = true;
+      break;
+    }
+    start = end;
+  }
+  stage.mean_iterations_cycle = double(cycle_iterations) / double(std::max(1L, cycle_solves));
+  stage.mean_iterations_implicit = double(implicit_iterations) / double(std::max(1L, implicit_solves));
+}
+
+}  // namespace
+
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearControl& control) {
   const WearEffect& effect = *scene.wear;
@@ -508,6 +617,10 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   WearStage stage;
   stage.rate_coefficient = law.rate_coefficient();
   stage.asymptote = wear_asymptote(scene, model, normal);
+  if (!scene.blocks.empty()) {
+    run_blocks(scene, model, cycle, control, stage);
+    return stage;
+  }
 
   const std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, cycle);
   stage.route = to_string(cycle.ran);
@@ -607,6 +720,22 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
   out["cycles_target"] = e.cycles;
   out["cycles_reached"] = w.cycles_reached;
   if (w.resumed_from) out["resumed_from"] = *w.resumed_from;
+  if (!scene.blocks.empty()) {  // per block of load.blocks: its cycles and the wear at its end
+    json blocks = json::array();
+    double start = 0.0;
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
+      const WearRecord* end = nullptr;
+      for (const WearRecord& r : w.records)
+        if (r.block == int(b)) end = &r;
+      json one = {{"block", b}, {"cycles_start", start}, {"cycles_end", start + scene.blocks[b].cycles}};
+      one["worn_area_end"] = end ? json(end->worn_area) : json(nullptr);
+      one["max_depth_end"] = end ? json(end->max_depth) : json(nullptr);
+      one["Q_max_end"] = end ? json(end->Q_max) : json(nullptr);
+      blocks.push_back(std::move(one));
+      start += scene.blocks[b].cycles;
+    }
+    out["blocks"] = std::move(blocks);
+  }
   if (e.stepper == WearStepper::explicit_capped) {  // the cap on ΔN below the stability limit, and the longest step taken (cycles)
     out["explicit_step_cap"] = w.explicit_step_cap;
     out["explicit_max_step"] = w.explicit_max_step;

@@ -66,6 +66,7 @@ struct WearRecord {
   double fraction = 0.0;  // worn area over the asymptote's (0 without one)
   std::vector<double> w, p, s;  // per cell
   std::vector<double> q;        // shear traction at the top of the cycle per cell (Pa); the bottom is −q
+  int block = -1;               // the block of load.blocks whose load it is under (from 0); -1 without blocks
 };
 
 struct WearStage {

@@ -315,7 +315,7 @@ TEST_CASE("tangential loads without the tangential effect are errors, not ignore
   CHECK(reports(j, "load.bulk_stress", {"no effect uses it"}));
 }
 
-TEST_CASE("dissimilar bodies take the incremental route under any load: the analogy and wear are refused") {
+TEST_CASE("dissimilar bodies take the incremental route under any load: the analogy and stress are refused") {
   json j = good();
   j["materials"] = {{"pad", {{"E", 2e11}, {"nu", 0.3}}}, {"specimen", {{"E", 7e10}, {"nu", 0.33}}}};
   j["friction"] = 0.5;
@@ -325,7 +325,9 @@ TEST_CASE("dissimilar bodies take the incremental route under any load: the anal
   j["effects"] = {{"tangential", {{"route", "analogy"}}}};
   CHECK(reports(j, "materials", {"beta", "analogy", "needs similar bodies"}));
   j["effects"] = {{"tangential", json::object()}, {"wear", {{"law", "archard"}, {"k", 1e-17}, {"cycles", 1e6}}}};
-  CHECK(reports(j, "materials", {"beta", "effects.wear", "not supported yet"}));
+  CHECK_NOTHROW(parse_scene(j));  // wear takes the coupled cycle (engine/wear_contacts.hpp)
+  j["effects"] = {{"tangential", json::object()}, {"stress", json::object()}};
+  CHECK(reports(j, "materials", {"beta", "effects.stress", "not supported yet"}));
   j["effects"] = {{"tangential", json::object()}};
   j["load"] = {{"P", 1e5}, {"control", "displacement"}, {"delta", 1e-6}};
   CHECK_NOTHROW(parse_scene(j));
@@ -653,4 +655,48 @@ TEST_CASE("the life effect's keys: wrong signs and ranges are named with what is
   json stray = life_scene();
   stray["effects"]["life"]["growth"]["short_crack"] = "none";
   CHECK(reports(stray, "effects.life.growth.fatigue_limit", {"without short_crack"}));
+}
+
+// load.blocks (engine/scene.cpp, parse_blocks): each block one load and its cycles, every problem at its path.
+TEST_CASE("load blocks: parsed with wear, every problem named at its block") {
+  json j = good();
+  j["friction"] = 0.5;
+  j["effects"] = {{"wear", {{"law", "archard"}, {"k", 1e-12}, {"cycles", 1000}}}};
+  j["load"]["blocks"] = {{{"Q", {{"amplitude", 2e4}}}, {"cycles", 300}},
+                         {{"history", {{0, 1e5, 1e4, 0}, {1, 1e5, -1e4, 0}, {2, 1e5, 1e4, 0}}}, {"cycles", 700}}};
+  const Scene s = parse_scene(j);
+  REQUIRE(s.blocks.size() == 2);
+  CHECK(s.Q_amplitude == 2e4);  // the first block's load is the scene's own
+  CHECK(s.blocks[1].history.size() == 3);
+  CHECK(s.to_json()["load"]["blocks"].size() == 2);
+  CHECK(!s.to_json()["load"].contains("Q"));
+  CHECK_NOTHROW(parse_scene(s.to_json()));
+
+  json bad = j;
+  bad["load"]["blocks"][1]["cycles"] = 0.5;
+  CHECK(reports(bad, "load.blocks[1].cycles", {"whole number"}));
+  bad = j;
+  bad["load"]["blocks"][0]["delta"] = 1e-6;
+  CHECK(reports(bad, "load.blocks[0]", {"exactly one of"}));
+  bad = j;
+  bad["load"]["blocks"][1]["history"][2] = {2, 1e5, 2e4, 0};
+  CHECK(reports(bad, "load.blocks[1].history[2]", {"cycle closes"}));
+  bad = j;
+  bad["load"]["blocks"][0]["Q"] = {{"amplitude", 1}, {"ratio", 0.5}};
+  CHECK(reports(bad, "load.blocks[0].Q", {"exactly one"}));
+  bad = j;
+  bad["load"]["blocks"][0]["cyles"] = 3;
+  CHECK(reports(bad, "load.blocks[0].cyles", {"unknown key"}));
+  bad = j;
+  bad["load"]["blocks"] = json::array();
+  CHECK(reports(bad, "load.blocks", {"non-empty list"}));
+  bad = j;
+  bad["load"]["Q"] = {{"ratio", 0.5}};
+  CHECK(reports(bad, "load.Q", {"given with load.blocks"}));
+  bad = j;
+  bad["effects"]["wear"]["cycles"] = 999;
+  CHECK(reports(bad, "effects.wear.cycles", {"blocks' total", "1000"}));
+  bad = j;
+  bad["effects"] = {{"tangential", json::object()}};
+  CHECK(reports(bad, "load.blocks", {"without effects.wear"}));
 }

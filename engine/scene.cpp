@@ -864,8 +864,10 @@ void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
         rw.problem("effects.wear.stepper", e.what());
       }
     }
-    effect.tolerance = rw.number("tolerance", 1e-3, {[](double v) { return v > 0.0 && v <= 0.1; },
-                                                     "a relative tolerance in (0, 0.1]"})
+    // Below 1e-5 the implicit stepper's first error estimate stays above the tolerance whatever the step (the
+    // contact solves' own tolerance sets a floor under it), and no step is ever accepted.
+    effect.tolerance = rw.number("tolerance", 1e-3, {[](double v) { return v >= 1e-5 && v <= 0.1; },
+                                                     "a relative tolerance in [1e-5, 0.1]"})
                            .value_or(1e-3);
     if (const json* rec = rw.find("record")) parse_record(rec, rw, effect);
     rw.finish();

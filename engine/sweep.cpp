@@ -225,11 +225,11 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     if (base_scene.life) {  // the life against the first varied key (a run that never fails is left out)
       std::string life;
       for (const auto& run : result.runs) {
-        const json total = run.status == 0 ? get(run.summary, "life.total_cycles") : json(nullptr);
+        const json life_total = run.status == 0 ? get(run.summary, "life.total_cycles") : json(nullptr);
         const json init = run.status == 0 ? get(run.summary, "life.initiation.cycles") : json(nullptr);
         if (!run.values[0].is_number()) continue;
         life += fmt::format("{} {} {}\n", run.values[0].get<double>(),
-                            total.is_number() ? fmt::format("{}", total.get<double>()) : std::string("NaN"),
+                            life_total.is_number() ? fmt::format("{}", life_total.get<double>()) : std::string("NaN"),
                             init.is_number() ? fmt::format("{}", init.get<double>()) : std::string("NaN"));
       }
       out.write("sweep_life.dat", life);

@@ -3,6 +3,12 @@
 // similar and dissimilar pairs; wear under a history whose amplitude lies between two constant cycles' lies between
 // their wear.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -11,6 +17,7 @@
 
 #include "support.hpp"
 
+#include "engine/output.hpp"
 #include "engine/simulation.hpp"
 
 using namespace fretwear;
@@ -72,4 +79,43 @@ TEST_CASE("wear under a history of amplitude between two constant cycles' wears 
   MESSAGE(fmt::format("worn area: ±0.3 f P {:.6g}, history {:.6g}, ±0.5 f P {:.6g} m²", low, mixed, high));
   CHECK(low < mixed);
   CHECK(mixed < high);
+}
+
+TEST_CASE("per-body coefficients: each body's wear in profiles.csv is in the ratio of its coefficient") {
+  json j = hertz({{"P", 1e5}, {"Q", {{"ratio", 0.5}}}}, false);
+  j["effects"] = {{"wear", {{"k_pad", 1e-15}, {"k_specimen", 3e-15}, {"cycles", 1e4}, {"record", 2}}}};
+  j["output"] = {{"plots", false}};
+  const Scene s = parse_scene(j);
+  const RunResult r = Simulation(s).run();
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / fmt::format("fretwear-per-body-{}", ::getpid());
+  {
+    OutputFolder out(dir);
+    write_results(s, r, out);
+    out.commit();
+  }
+  std::ifstream csv(dir / "profiles.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  const auto column = [&header](const std::string& name) {
+    std::stringstream ss(header);
+    std::size_t k = 0;
+    for (std::string cell; std::getline(ss, cell, ','); ++k)
+      if (cell == name) return k;
+    return std::size_t(-1);
+  };
+  const std::size_t pad = column("wear_pad_m"), specimen = column("wear_specimen_m");
+  REQUIRE(pad != std::size_t(-1));
+  REQUIRE(specimen != std::size_t(-1));
+  int worn = 0;
+  while (std::getline(csv, line)) {
+    std::vector<double> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell == "inf" ? 1e300 : std::stod(cell));
+    if (cells.size() <= std::max(pad, specimen) || cells[pad] <= 0.0) continue;
+    CHECK(cells[specimen] == test::rel(3.0 * cells[pad], 1e-8));  // CSV digits
+    ++worn;
+  }
+  CHECK(worn > 0);
+  std::filesystem::remove_all(dir);
 }

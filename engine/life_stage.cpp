@@ -317,7 +317,7 @@ std::string life_plot_script(const Scene& scene, const LifeStage& life) {
   if (life.initiation && life.initiation->map_y.size() > 1) {
     const LifeInitiationResult& i = *life.initiation;
     s += "reset\nset datafile separator ','\nset view map\nset pm3d map\nset palette cubehelix\n";
-    s += fmt::format("set title \"{}: Miner's damage {} (site x = {:.4g} mm)\" noenhanced\n", scene.name,
+    s += fmt::format("set title \"{}: Miner's damage {} (red: the site, x = {:.4g} mm)\" noenhanced\n", scene.name,
                      std::isfinite(i.cycles) ? fmt::format("at initiation, N = {:.4g}", i.cycles)
                                              : fmt::format("after {:.4g} cycles", scene.life->cycles_max),
                      i.x * 1e3);
@@ -325,7 +325,7 @@ std::string life_plot_script(const Scene& scene, const LifeStage& life) {
                      i.map_y.back() * 1e6);
     s += "set datafile separator whitespace\n";
     s += png_only("life_damage", fmt::format("splot 'life_damage.dat' using ($1*1e3):($2*1e6):3 with pm3d notitle, "
-                                             "'-' using 1:2:3 with points pt 7 ps 1.5 lc rgb 'red' title 'site'\n"
+                                             "'-' using 1:2:3 with points pt 7 ps 1.5 lc rgb 'red' notitle\n"
                                              "{} 0 0\ne\n",
                                              i.x * 1e3));
   }

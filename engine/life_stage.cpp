@@ -126,7 +126,9 @@ Initiation initiate(const Scene& scene, const Grid& grid, const NormalResult& no
   const LifeInitiation& li = *scene.life->initiation;
   const InitiationConstants k{li.sigma_f, li.b, li.eps_f, li.c, scene.specimen.E};
   const double ell = li.critical_distance;
-  const auto [x, y] = layer_axes(grid, normal, states, ell);
+  const auto axes = layer_axes(grid, normal, states, ell);  // not a structured binding: clang 14 cannot capture those
+  const std::vector<double>& x = axes.first;
+  const std::vector<double>& y = axes.second;
   std::vector<SwtLayer> layers;
   for (const State& s : states) layers.push_back(swt_layer(grid, s, x, y, scene.specimen, scene.plane));
   // The damage rate (per cycle) at column i, depth d below the surface of state j.

@@ -7,8 +7,9 @@
 //     SWT(N) = (σf′)²/E (2N)^{2b} + σf′ εf′ (2N)^{b+c},     b < 0, c < 0,
 // decreasing in N, so N_i(SWT) is the one root of SWT(N) = SWT on ln N, found by TOMS 748 (Boost.Math) to a relative
 // 1e-12 in N. Below SWT(kMaxLife) the point never initiates (N_i = +∞); above SWT(kMinLife), N_i = kMinLife. Critical
-// distance by Taylor's line method: the SWT of each point on its own critical plane, averaged over depth y ∈ [0, ℓ]
-// below a surface point (trapezoids, linear between the samples); ℓ = 0 is the surface value (the point method).
+// distance by Taylor's line method (Taylor 2007): the stresses averaged over depth y ∈ [0, ℓ] below a surface point
+// (line_average, trapezoids, linear between the samples), then SWT on the critical plane of the mean history
+// (engine/life_stage.hpp); ℓ = 0 is the surface value (the point method).
 // Miner's rule over states k held for ΔN_k cycles: D = Σ ΔN_k / N_i(SWT_k); initiation where D first reaches 1.
 //
 // Propagation. Paris and Erdogan (1963): da/dN = C ΔK^m where ΔK exceeds the threshold, 0 below it; ΔK = K_max − K_min

@@ -19,6 +19,7 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kLayerDepths = 24;    // depths of the SWT layer from the surface to ℓ + the deepest wear
 constexpr int kMaxLayerPoints = 512;  // surface points across the layer: every cell centre on the default grids
+constexpr int kStressDepths = 48;     // depths of the stresses the line method averages, to ℓ below the layer
 
 // One state of the run: from `cycles` on, its loads at the top and the bottom, and the specimen's wear per cell.
 struct State {
@@ -44,46 +45,65 @@ std::vector<State> life_states(const Scene& scene, const NormalResult& normal, c
   return states;
 }
 
-// SWT on its critical plane over a layer of points under the surface, row-major (y outer).
+// SWT_ℓ on its critical plane over a layer of points under the surface, row-major (y outer): at depth y_j below
+// surface point x_i, the SWT of the stress history averaged over the line [y_j, y_j + ℓ] below it (the point's own
+// stress when ℓ = 0). The stresses are averaged, not the SWT values: at a square-root singular edge σ ∝ r^(−1/2), so
+// the mean stress over the line converges as the grid is refined, while SWT ∝ 1/r and its mean grows like ln(ℓ/h).
 struct SwtLayer {
   std::vector<double> x, y;
   std::vector<SwtResult> points;
   const SwtResult& at(std::size_t i, std::size_t j) const { return points[j * x.size() + i]; }
 };
 
+// The mean of a stress column sampled at depths ys over [d, d + ell] (trapezoids, linear between the samples and to
+// the ends; held past the last sample).
+Stress line_mean(const std::vector<double>& ys, const std::vector<Stress>& column, double d, double ell) {
+  auto at = [&](double depth) {
+    if (ys.size() == 1) return column[0];
+    depth = std::clamp(depth, ys.front(), ys.back());
+    std::size_t j = std::size_t(std::upper_bound(ys.begin(), ys.end(), depth) - ys.begin());
+    j = std::clamp<std::size_t>(j, 1, ys.size() - 1);
+    const double t = (depth - ys[j - 1]) / (ys[j] - ys[j - 1]);
+    const Stress& a = column[j - 1];
+    const Stress& b = column[j];
+    return Stress{a.xx + t * (b.xx - a.xx), a.yy + t * (b.yy - a.yy), a.xy + t * (b.xy - a.xy)};
+  };
+  if (ell <= 0.0 || ys.size() == 1) return at(d);
+  std::vector<double> y{0.0};
+  std::vector<Stress> v{at(d)};
+  for (std::size_t j = 0; j < ys.size(); ++j)
+    if (ys[j] > d && ys[j] < d + ell) y.push_back(ys[j] - d), v.push_back(column[j]);
+  y.push_back(ell);
+  v.push_back(at(d + ell));
+  std::vector<double> xx, yy, xy;
+  for (const Stress& s : v) xx.push_back(s.xx), yy.push_back(s.yy), xy.push_back(s.xy);
+  return {line_average(y, xx, ell), line_average(y, yy, ell), line_average(y, xy, ell)};
+}
+
+// ys: the depths the stresses are sampled at, down to y.back() + ℓ.
 SwtLayer swt_layer(const Grid& grid, const State& state, const std::vector<double>& x, const std::vector<double>& y,
-                   const Material& specimen, PlaneState plane) {
+                   const std::vector<double>& ys, double ell, const Material& specimen, PlaneState plane) {
   SwtLayer layer{x, y, std::vector<SwtResult>(x.size() * y.size())};
   const SurfaceTractions top{grid, state.phases[0].p, state.phases[0].q, state.phases[0].sigma_bulk};
   const SurfaceTractions bottom{grid, state.phases[1].p, state.phases[1].q, state.phases[1].sigma_bulk};
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const std::vector<Stress> a = stress_along_depth(top, x[i], y), b = stress_along_depth(bottom, x[i], y);
+    const std::vector<Stress> a = stress_along_depth(top, x[i], ys), b = stress_along_depth(bottom, x[i], ys);
     for (std::size_t j = 0; j < y.size(); ++j) {
-      const Stress pair[2] = {a[j], b[j]};
+      const Stress pair[2] = {line_mean(ys, a, y[j], ell), line_mean(ys, b, y[j], ell)};
       layer.points[j * x.size() + i] = swt_critical_plane(pair, specimen, plane);
     }
   }
   return layer;
 }
 
-// SWT_ℓ at column i, depth d: the mean of SWT over [d, d + ℓ], linear between the layer's depths.
-double swt_line(const SwtLayer& layer, std::size_t i, double d, double ell) {
-  std::vector<double> y{0.0}, v;
-  auto value_at = [&](double depth) {
-    if (layer.y.size() == 1) return layer.at(i, 0).swt;
-    depth = std::clamp(depth, layer.y.front(), layer.y.back());
-    std::size_t j = std::size_t(std::upper_bound(layer.y.begin(), layer.y.end(), depth) - layer.y.begin());
-    j = std::clamp<std::size_t>(j, 1, layer.y.size() - 1);
-    const double t = (depth - layer.y[j - 1]) / (layer.y[j] - layer.y[j - 1]);
-    return layer.at(i, j - 1).swt + t * (layer.at(i, j).swt - layer.at(i, j - 1).swt);
-  };
-  v.push_back(value_at(d));
-  if (ell <= 0.0) return v[0];
-  for (std::size_t j = 0; j < layer.y.size(); ++j)
-    if (layer.y[j] > d && layer.y[j] < d + ell) y.push_back(layer.y[j] - d), v.push_back(layer.at(i, j).swt);
-  y.push_back(ell);
-  v.push_back(value_at(d + ell));
-  return line_average(y, v, ell);
+// SWT_ℓ at column i, depth d: linear between the layer's depths, held past them.
+double swt_line(const SwtLayer& layer, std::size_t i, double d) {
+  if (layer.y.size() == 1) return layer.at(i, 0).swt;
+  d = std::clamp(d, layer.y.front(), layer.y.back());
+  std::size_t j = std::size_t(std::upper_bound(layer.y.begin(), layer.y.end(), d) - layer.y.begin());
+  j = std::clamp<std::size_t>(j, 1, layer.y.size() - 1);
+  const double t = (d - layer.y[j - 1]) / (layer.y[j] - layer.y[j - 1]);
+  return layer.at(i, j - 1).swt + t * (layer.at(i, j).swt - layer.at(i, j - 1).swt);
 }
 
 // The specimen's wear at x (m), of the cell holding x.
@@ -97,11 +117,15 @@ struct Initiation {
   std::size_t state = 0;
 };
 
+// The layer's surface points x, the depths y of its SWT_ℓ, and the depths ys of the stresses averaged over ℓ.
+struct LayerAxes {
+  std::vector<double> x, y, ys;
+};
+
 // The surface points and depths of the layer: cell centres over the contact and half a half-width beyond (at most
 // kMaxLayerPoints), depths to ℓ plus the deepest wear of the specimen, graded as (j/J)² toward the surface, where
-// the SWT of a contact edge varies fastest (like 1/r at a singular one).
-std::pair<std::vector<double>, std::vector<double>> layer_axes(const Grid& grid, const NormalResult& normal,
-                                                               const std::vector<State>& states, double ell) {
+// the stresses of a contact edge vary fastest (like r^(−1/2) at a singular one); the stresses to ℓ further down.
+LayerAxes layer_axes(const Grid& grid, const NormalResult& normal, const std::vector<State>& states, double ell) {
   const double xl = normal.zones.front().left.x, xr = normal.zones.back().right.x, half = 0.5 * (xr - xl);
   std::vector<double> x;
   for (int i = 0; i < grid.n; ++i)
@@ -115,10 +139,15 @@ std::pair<std::vector<double>, std::vector<double>> layer_axes(const Grid& grid,
   for (const State& s : states)
     for (double w : s.w_specimen) w_max = std::max(w_max, w);
   const double depth = ell + w_max;
-  std::vector<double> y{0.0};
-  if (depth > 0.0)
-    for (int j = 1; j <= kLayerDepths; ++j) y.push_back(depth * double(j * j) / (kLayerDepths * kLayerDepths));
-  return {x, y};
+  auto graded = [](double to, int n) {
+    std::vector<double> v{0.0};
+    if (to > 0.0)
+      for (int j = 1; j <= n; ++j) v.push_back(to * double(j * j) / double(n * n));
+    return v;
+  };
+  LayerAxes axes{x, graded(depth, kLayerDepths), {}};
+  axes.ys = ell > 0.0 ? graded(depth + ell, kStressDepths) : axes.y;
+  return axes;
 }
 
 Initiation initiate(const Scene& scene, const Grid& grid, const NormalResult& normal,
@@ -126,14 +155,14 @@ Initiation initiate(const Scene& scene, const Grid& grid, const NormalResult& no
   const LifeInitiation& li = *scene.life->initiation;
   const InitiationConstants k{li.sigma_f, li.b, li.eps_f, li.c, scene.specimen.E};
   const double ell = li.critical_distance;
-  const auto axes = layer_axes(grid, normal, states, ell);  // not a structured binding: clang 14 cannot capture those
-  const std::vector<double>& x = axes.first;
-  const std::vector<double>& y = axes.second;
+  const LayerAxes axes = layer_axes(grid, normal, states, ell);
+  const std::vector<double>& x = axes.x;
+  const std::vector<double>& y = axes.y;
   std::vector<SwtLayer> layers;
-  for (const State& s : states) layers.push_back(swt_layer(grid, s, x, y, scene.specimen, scene.plane));
+  for (const State& s : states) layers.push_back(swt_layer(grid, s, x, y, axes.ys, ell, scene.specimen, scene.plane));
   // The damage rate (per cycle) at column i, depth d below the surface of state j.
   auto rate = [&](std::size_t j, std::size_t i, double d) {
-    const double n = initiation_life(k, swt_line(layers[j], i, d, ell));
+    const double n = initiation_life(k, swt_line(layers[j], i, d));
     return std::isinf(n) ? 0.0 : 1.0 / n;
   };
   auto wear = [&](std::size_t j, std::size_t i) { return wear_at(grid, states[j].w_specimen, x[i]); };
@@ -168,10 +197,10 @@ Initiation initiate(const Scene& scene, const Grid& grid, const NormalResult& no
     best.state = states.size() - 1;
     double top = -kInfinity;
     for (std::size_t i = 0; i < x.size(); ++i)
-      if (const double v = swt_line(layers.back(), i, 0.0, ell); v > top) top = v, best.result.x = x[i];
+      if (const double v = swt_line(layers.back(), i, 0.0); v > top) top = v, best.result.x = x[i];
   }
   const std::size_t site = std::size_t(std::find(x.begin(), x.end(), best.result.x) - x.begin());
-  best.result.swt = swt_line(layers[best.state], site, 0.0, ell);
+  best.result.swt = swt_line(layers[best.state], site, 0.0);
   best.result.angle_deg = layers[best.state].at(site, 0).theta * 180.0 / std::numbers::pi;
   best.result.state_cycles = states[best.state].cycles;
   // The damage map: at the initiation, or at cycles_max when it never starts.
@@ -179,7 +208,12 @@ Initiation initiate(const Scene& scene, const Grid& grid, const NormalResult& no
   best.result.map_x = x;
   best.result.map_y = y;
   for (std::size_t j = 0; j < y.size(); ++j)
-    for (std::size_t i = 0; i < x.size(); ++i) best.result.damage.push_back(damage(best.state, i, y[j], N_map));
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double d = y[j] - wear(best.state, i);  // original depth y₀ to the depth below the worn surface
+      best.result.damage.push_back(d < 0.0 ? std::numeric_limits<double>::quiet_NaN()
+                                           : damage(best.state, i, d, N_map));
+    }
+  for (std::size_t i = 0; i < x.size(); ++i) best.result.map_surface.push_back(wear(best.state, i));
   return best;
 }
 
@@ -197,6 +231,18 @@ std::vector<SifTable> sif_tables(const Grid& grid, const std::vector<State>& sta
 }
 
 }  // namespace
+
+SwtResult line_swt(const Grid& grid, const std::vector<Phase>& phases, double x, double d, double ell,
+                   const Material& specimen, PlaneState plane) {
+  std::vector<double> ys{0.0};
+  for (int j = 1; j <= kStressDepths; ++j) ys.push_back((d + ell) * double(j * j) / double(kStressDepths * kStressDepths));
+  if (d + ell <= 0.0) ys.resize(1);
+  const SurfaceTractions top{grid, phases[0].p, phases[0].q, phases[0].sigma_bulk};
+  const SurfaceTractions bottom{grid, phases[1].p, phases[1].q, phases[1].sigma_bulk};
+  const std::vector<Stress> a = stress_along_depth(top, x, ys), b = stress_along_depth(bottom, x, ys);
+  const Stress pair[2] = {line_mean(ys, a, d, ell), line_mean(ys, b, d, ell)};
+  return swt_critical_plane(pair, specimen, plane);
+}
 
 LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearStage* wear) {
@@ -319,17 +365,26 @@ std::string life_plot_script(const Scene& scene, const LifeStage& life) {
   if (life.initiation && life.initiation->map_y.size() > 1) {
     const LifeInitiationResult& i = *life.initiation;
     s += "reset\nset datafile separator ','\nset view map\nset pm3d map\nset palette cubehelix\n";
-    s += fmt::format("set title \"{}: Miner's damage {} (red: the site, x = {:.4g} mm)\" noenhanced\n", scene.name,
-                     std::isfinite(i.cycles) ? fmt::format("at initiation, N = {:.4g}", i.cycles)
-                                             : fmt::format("after {:.4g} cycles", scene.life->cycles_max),
+    s += fmt::format("set title \"{}: Miner's damage {} (red: the site, x = {:.4g} mm; black: the worn surface)\" noenhanced\n", scene.name,
+                     i.cycles <= scene.life->cycles_max ? fmt::format("at initiation, N = {:.4g}", i.cycles)
+                                                        : fmt::format("after {:.4g} cycles", scene.life->cycles_max),
                      i.x * 1e3);
-    s += fmt::format("set xlabel 'x (mm)'\nset ylabel 'depth y (µm)'\nset yrange [{}:0]\nset cblabel 'damage'\n",
+    s += fmt::format("set xlabel 'x (mm)'\nset ylabel 'depth below the unworn surface (µm)'\nset yrange [{}:0]\n"
+                     "set cblabel 'damage'\n",
                      i.map_y.back() * 1e6);
+    // The worn surface then, over the removed layer (left blank: its material went with the wear debris).
+    std::string surface;
+    double site_depth = 0.0;
+    for (std::size_t k = 0; k < i.map_x.size(); ++k)
+      if (i.map_x[k] == i.x) site_depth = i.map_surface[k];
+    for (std::size_t k = 0; k < i.map_x.size(); ++k)
+      surface += fmt::format("{} {} 0\n", num(i.map_x[k] * 1e3), num(i.map_surface[k] * 1e6));
     s += "set datafile separator whitespace\n";
     s += png_only("life_damage", fmt::format("splot 'life_damage.dat' using ($1*1e3):($2*1e6):3 with pm3d notitle, "
+                                             "'-' using 1:2:3 with lines lw 2 lc rgb 'black' notitle, "
                                              "'-' using 1:2:3 with points pt 7 ps 1.5 lc rgb 'red' notitle\n"
-                                             "{} 0 0\ne\n",
-                                             i.x * 1e3));
+                                             "{}e\n{} {} 0\ne\n",
+                                             surface, i.x * 1e3, site_depth * 1e6));
   }
   return s;
 }

@@ -5,7 +5,10 @@
 // Initiation. At each state k the critical-plane SWT (contact/fatigue_measures.hpp) is evaluated on a layer under
 // the contact: points x across the contact and half its half-width beyond, depths y from the surface to the critical
 // distance ℓ plus the specimen's deepest wear. A point at depth d below the surface damages at the rate
-// 1/N_i(SWT_ℓ(x, d)), SWT_ℓ the mean over [d, d + ℓ] (the value at d when ℓ = 0). Damage is carried by material
+// 1/N_i(SWT_ℓ(x, d)), SWT_ℓ the SWT of the stress history averaged over the line [d, d + ℓ] below it (Taylor's line
+// method, which averages stress: Taylor 2007; the point's own when ℓ = 0). Averaging the stresses, not the SWT, is
+// what converges at a square-root singular edge: there σ ∝ r^(−1/2), whose mean over the line is finite, while
+// SWT ∝ 1/r, whose mean grows like ln(ℓ/h) as the grid is refined. Damage is carried by material
 // points fixed in the specimen: the specimen's wear w_s(x) = (1 − pad_fraction) w(x) (both bodies share one scar,
 // split by pad_fraction) brings a point at original depth y₀ to depth y₀ − w_s, and removes it past the surface,
 // taking its damage with it. The crack starts at the surface point x whose material first reaches D = 1:
@@ -26,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/fatigue_life.hpp"
+#include "contact/fatigue_measures.hpp"
 #include "engine/cycle_stage.hpp"
 #include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
@@ -44,10 +48,13 @@ struct LifeInitiationResult {
   double angle_deg = 0.0;          // the critical plane's normal at the site, from +x toward +y (degrees)
   double state_cycles = 0.0;       // the cycle count of the state in force then
   // The site is at a singular edge (engine/stress_stage.hpp, SingularEdges): its point SWT grows like 1/h with the
-  // grid; the line method's grows only like ln(ℓ/h) (SWT ∝ 1/r there) and is the one to use.
+  // grid; the line method's converges (it averages the stresses, ∝ r^(−1/2) there) and is the one to use.
   bool singular = false;
-  std::vector<double> map_x, map_y;  // the damage map's axes (m): depths below the surface of that state
-  std::vector<double> damage;        // row-major, y outer: Miner's damage at the initiation (or per cycle, if never)
+  // The damage map at the initiation (at cycles_max if never): x, and the original depth y₀ below the unworn surface
+  // (m); damage row-major, y outer, NaN where wear has removed the material (y₀ < map_surface of its column).
+  std::vector<double> map_x, map_y;
+  std::vector<double> damage;
+  std::vector<double> map_surface;  // the specimen's wear depth per column then (m)
 };
 
 struct LifeStage {
@@ -63,6 +70,12 @@ struct LifeStage {
 // The stage, over the unworn contact (wear null) or every wear record.
 LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearStage* wear);
+
+// SWT_ℓ of the line method at surface point x and depth d below it, for a cycle's phases (its top and bottom): the
+// critical-plane SWT of the stresses averaged over [d, d + ℓ] (sampled at 48 depths graded toward d = 0); the
+// point's own with ℓ = 0. The life stage evaluates it on its layer.
+SwtResult line_swt(const Grid& grid, const std::vector<Phase>& phases, double x, double d, double ell,
+                   const Material& specimen, PlaneState plane);
 
 // Its part of summary.json: "life" (SCENES.md; an infinite count is null).
 nlohmann::json summarise_life(const Scene& scene, const LifeStage& life);

@@ -2,14 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 
+// Boost 1.74's pchip.hpp and makima.hpp call isnan unqualified in a template; the declaration they need must be
+// visible where they are included.
+using std::isnan;
+#include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
+#include <boost/math/interpolators/makima.hpp>
+#include <boost/math/interpolators/pchip.hpp>
 #include <boost/math/tools/minima.hpp>
+
+#include <fmt/format.h>
 
 #include "common/error.hpp"
 
 namespace fretwear {
+
+// A table's curve between its points (pchip, makima, cubic), in the table's own x; linear tables have none.
+struct TableInterpolant {
+  std::function<double(double)> value, slope;
+};
+
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -56,6 +71,10 @@ double raw_gap(const ProfileSpec& s, double x) {
       break;
     case ProfileType::table: {
       if (t < s.x.front() || t > s.x.back()) return kInf;
+      if (s.curve) {
+        g = s.curve->value(t);
+        break;
+      }
       auto it = std::upper_bound(s.x.begin(), s.x.end(), t);
       std::size_t i = std::min<std::size_t>(std::max<std::ptrdiff_t>(it - s.x.begin(), 1), s.x.size() - 1);
       const double w = (t - s.x[i - 1]) / (s.x[i] - s.x[i - 1]);
@@ -102,6 +121,10 @@ double raw_slope(const ProfileSpec& s, double x) {
       break;
     case ProfileType::table: {
       if (t < s.x.front() || t > s.x.back()) return 0.0;
+      if (s.curve) {
+        d = s.curve->slope(t);
+        break;
+      }
       auto it = std::upper_bound(s.x.begin(), s.x.end(), t);
       std::size_t i = std::min<std::size_t>(std::max<std::ptrdiff_t>(it - s.x.begin(), 1), s.x.size() - 1);
       d = (s.h[i] - s.h[i - 1]) / (s.x[i] - s.x[i - 1]);
@@ -140,7 +163,10 @@ void collect_kinks(const ProfileSpec& s, double shift, std::vector<double>& out)
       break;
     }
     case ProfileType::table:
-      for (double xi : s.x) out.push_back(o + xi);
+      if (s.interpolation == Interpolation::linear)
+        for (double xi : s.x) out.push_back(o + xi);
+      else  // C¹ between the ends
+        out.insert(out.end(), {o + s.x.front(), o + s.x.back()});
       break;
     case ProfileType::sum:
     case ProfileType::envelope:
@@ -238,6 +264,102 @@ ProfileType profile_type_from_string(std::string_view word) {
 }
 
 namespace {
+
+constexpr std::pair<Interpolation, const char*> kInterpolationWords[] = {{Interpolation::linear, "linear"},
+                                                                         {Interpolation::pchip, "pchip"},
+                                                                         {Interpolation::makima, "makima"},
+                                                                         {Interpolation::cubic, "cubic"}};
+
+// The curve of a table read with a cubic interpolant; throws InputError when the table does not suit it.
+std::shared_ptr<const TableInterpolant> make_curve(const ProfileSpec& s) {
+  const std::size_t n = s.x.size();
+  if (s.interpolation == Interpolation::linear && n >= 2 && n == s.h.size()) return nullptr;
+  if (n != s.h.size() || n < min_table_points(s.interpolation))
+    throw InputError(fmt::format("profile: a table read with {} interpolation needs at least {} points with one h "
+                                 "per x; it has {} x and {} h",
+                                 to_string(s.interpolation), min_table_points(s.interpolation), n, s.h.size()));
+  auto curve = std::make_shared<TableInterpolant>();
+  switch (s.interpolation) {
+    case Interpolation::linear:
+      break;
+    case Interpolation::pchip: {
+      using Pchip = boost::math::interpolators::pchip<std::vector<double>>;
+      auto f = std::make_shared<const Pchip>(std::vector<double>(s.x), std::vector<double>(s.h));
+      curve->value = [f](double t) { return (*f)(t); };
+      curve->slope = [f](double t) { return f->prime(t); };
+      break;
+    }
+    case Interpolation::makima: {
+      using Makima = boost::math::interpolators::makima<std::vector<double>>;
+      auto f = std::make_shared<const Makima>(std::vector<double>(s.x), std::vector<double>(s.h));
+      curve->value = [f](double t) { return (*f)(t); };
+      curve->slope = [f](double t) { return f->prime(t); };
+      break;
+    }
+    case Interpolation::cubic: {
+      if (!uniformly_spaced(s.x))
+        throw InputError("profile: cubic interpolation needs uniformly spaced x (a cardinal B-spline); use \"makima\" "
+                         "or \"pchip\" for a table on non-uniform x");
+      const double x0 = s.x.front(), step = (s.x.back() - x0) / double(n - 1), x1 = x0 + step * double(n - 1);
+      auto f = std::make_shared<const boost::math::interpolators::cardinal_cubic_b_spline<double>>(
+          s.h.data(), n, x0, step);
+      // Nodes within kUniformTolerance of a spacing: the spline's ends may differ from x's by round-off.
+      curve->value = [f, x0, x1](double t) { return (*f)(std::clamp(t, x0, x1)); };
+      curve->slope = [f, x0, x1](double t) { return f->prime(std::clamp(t, x0, x1)); };
+      break;
+    }
+  }
+  return curve;
+}
+
+void build_curves(ProfileSpec& s) {
+  if (s.type == ProfileType::table) s.curve = make_curve(s);
+  for (auto& term : s.terms) build_curves(term);
+}
+
+}  // namespace
+
+std::string to_string(Interpolation i) {
+  for (const auto& [value, word] : kInterpolationWords)
+    if (value == i) return word;
+  return "?";
+}
+
+std::string interpolation_words() {
+  std::string s;
+  const std::size_t n = std::size(kInterpolationWords);
+  for (std::size_t k = 0; k < n; ++k)
+    s += (k == 0 ? "" : k + 1 == n ? " or " : ", ") + fmt::format("\"{}\"", kInterpolationWords[k].second);
+  return s;
+}
+
+Interpolation interpolation_from_string(std::string_view word) {
+  for (const auto& [value, w] : kInterpolationWords)
+    if (word == w) return value;
+  throw InputError(fmt::format("\"{}\" is not an interpolation; use {}", word, interpolation_words()));
+}
+
+std::size_t min_table_points(Interpolation i) {
+  switch (i) {
+    case Interpolation::pchip:
+    case Interpolation::makima:
+      return 4;  // Boost.Math's pchip and makima
+    case Interpolation::cubic:
+      return 5;  // the cardinal B-spline with its end slopes estimated from the data
+    default:
+      return 2;
+  }
+}
+
+bool uniformly_spaced(const std::vector<double>& x) {
+  if (x.size() < 2) return false;
+  const double step = (x.back() - x.front()) / double(x.size() - 1);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::abs(x[i] - (x.front() + double(i) * step)) > kUniformTolerance * step) return false;
+  return true;
+}
+
+namespace {
 [[noreturn]] void throw_unbounded() {
   throw InputError("profile: the gap has no lowest point within 1 km of the profile's centre: a tilt_rad steeper "
                    "than the profile's flanks makes the bodies interpenetrate without bound");
@@ -245,6 +367,7 @@ namespace {
 }  // namespace
 
 Profile::Profile(ProfileSpec spec) : spec_(std::move(spec)) {
+  build_curves(spec_);
   support_ = raw_support(spec_);
   symmetric_ = symmetry_centre(spec_).has_value();
   periodic_ = is_periodic(spec_) && spec_.tilt_rad == 0.0;

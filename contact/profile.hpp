@@ -6,6 +6,8 @@
 // that its minimum is 0.
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -22,6 +24,32 @@ ProfileType profile_type_from_string(std::string_view word);
 // The accepted words, comma separated (for messages and docs).
 std::string profile_type_words();
 
+// How a table is read between its points (SCENES.md, "Measured profiles"). linear: straight segments, a kink at every
+// point. pchip: Fritsch & Carlson's (1980) monotone piecewise cubic Hermite interpolant; makima: Akima's (1970)
+// piecewise cubic Hermite with the modified weights that keep flat runs flat; both C¹, on any increasing x, from 4
+// points. cubic: the C² cubic B-spline interpolant on uniformly spaced x (Boost.Math's cardinal_cubic_b_spline, its
+// end slopes estimated from the data), from 5 points; Boost 1.74 has no C² cubic spline for non-uniform x.
+enum class Interpolation { linear, pchip, makima, cubic };
+std::string to_string(Interpolation i);
+// Throws InputError listing the accepted words.
+Interpolation interpolation_from_string(std::string_view word);
+std::string interpolation_words();  // "linear", "pchip", "makima" or "cubic"
+// The fewest table points each interpolation takes.
+std::size_t min_table_points(Interpolation i);
+// True when the x are uniformly spaced, as cubic needs: every x_i within kUniformTolerance of a spacing of
+// x0 + i (x_n − x0)/n.
+constexpr double kUniformTolerance = 1e-6;
+bool uniformly_spaced(const std::vector<double>& x);
+
+// Where a table was read from, for the resolved scene; empty file for a table given inline.
+struct TableSource {
+  std::string file;      // the path as resolved against the scene's folder
+  std::string x_unit = "m", h_unit = "m";
+  std::string checksum;  // "fnv1a64:" and the file's FNV-1a 64-bit hash in 16 hex digits
+};
+
+struct TableInterpolant;  // the table's curve, built by Profile
+
 struct ProfileSpec {
   ProfileType type = ProfileType::cylinder;
   double R = 0.0;           // cylinder, flat_rounded, rounded_wedge: radius (m)
@@ -30,7 +58,10 @@ struct ProfileSpec {
   double angle_deg = 0.0;   // wedge, rounded_wedge: flank angle to the surface (degrees, 0 < angle < 90)
   double amplitude = 0.0;   // wavy: g0 = amplitude (1 − cos(2πx/wavelength)) (m)
   double wavelength = 0.0;  // wavy (m)
-  std::vector<double> x, h; // table: g0 = h at increasing x, linear between, +∞ outside [x.front(), x.back()]
+  std::vector<double> x, h; // table: g0 = h at increasing x (m), interpolated between, +∞ outside [x.front(), x.back()]
+  Interpolation interpolation = Interpolation::linear;  // table
+  TableSource source;       // table: where x and h came from
+  std::shared_ptr<const TableInterpolant> curve;  // table: set by Profile (immutable, shared by copies)
   std::vector<ProfileSpec> terms;  // sum, envelope
   double offset_x = 0.0;    // m
   double tilt_rad = 0.0;    // rad
@@ -38,7 +69,8 @@ struct ProfileSpec {
 
 class Profile {
  public:
-  // Throws InputError if the profile has no lowest point (a tilt steeper than the flanks, a tilted waviness). A
+  // Throws InputError if a table has fewer points than its interpolation takes (or cubic non-uniform x), or if the
+  // profile has no lowest point (a tilt steeper than the flanks, a tilted waviness). A
   // lone waviness has one but repeats it: periodic() is then true and the scene must give the window.
   explicit Profile(ProfileSpec spec);
 

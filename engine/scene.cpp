@@ -1,6 +1,8 @@
 #include "engine/scene.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -129,6 +131,7 @@ class Reader {
 
   std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   void problem(const std::string& path, const std::string& what) { problems_.push_back(path + ": " + what); }
+  std::vector<std::string>& problems() { return problems_; }
 
   const json* find(const std::string& key) {
     if (std::find(seen_.begin(), seen_.end(), key) == seen_.end()) seen_.push_back(key);
@@ -219,7 +222,248 @@ class Reader {
 
 constexpr int kMaxProfileDepth = 8;
 
-ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<std::string>& problems, int depth) {
+// The units a table's x and h may be given in, with their size in metres.
+constexpr std::pair<const char*, double> kTableUnits[] = {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}};
+const std::string kTableUnitWords = "\"m\", \"mm\", \"um\" or \"nm\"";
+
+// FNV-1a, 64 bits (Fowler, Noll and Vo), written "fnv1a64:" and 16 hex digits: the checksum of a table's file.
+std::string fnv1a64(std::string_view bytes) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+  return fmt::format("fnv1a64:{:016x}", hash);
+}
+
+// A measured profile's CSV (SCENES.md, "Measured profiles"): a header row naming the two columns, then one row x, h
+// per point, x increasing strictly; blank lines and lines starting with '#' are skipped; a row's fields are
+// separated by a comma and may carry spaces. Reports each problem as "path: file, line n: what is wrong"; returns
+// false when there are any.
+bool read_table_csv(std::string_view text, const std::string& path, const std::string& file, double x_scale,
+                    double h_scale, ProfileSpec& s, std::vector<std::string>& problems) {
+  constexpr std::size_t kMaxProblemsNamed = 10;
+  const std::size_t before = problems.size();
+  std::size_t n_problems = 0;
+  const auto problem = [&](std::size_t line, const std::string& what) {
+    if (++n_problems <= kMaxProblemsNamed) problems.push_back(fmt::format("{}: {}, line {}: {}", path, file, line, what));
+  };
+  const auto trim = [](std::string_view v) {
+    const auto first = v.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos) return std::string_view();
+    return v.substr(first, v.find_last_not_of(" \t\r") - first + 1);
+  };
+  const Bound x_span = position("a position x"), h_span = position("a height h");
+  bool header = false;
+  std::size_t line_no = 0, x_line = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t eol = std::min(text.find('\n', at), text.size());
+    const std::string_view line = trim(text.substr(at, eol - at));
+    at = eol + 1;
+    ++line_no;
+    if (line.empty() || line.front() == '#') continue;
+    std::vector<std::string_view> fields;
+    for (std::size_t from = 0;;) {
+      const std::size_t comma = line.find(',', from);
+      fields.push_back(trim(line.substr(from, comma == std::string_view::npos ? std::string_view::npos : comma - from)));
+      if (comma == std::string_view::npos) break;
+      from = comma + 1;
+    }
+    if (fields.size() != 2) {
+      problem(line_no, fmt::format("has {} column{}; give two, x and h, separated by a comma", fields.size(),
+                                   fields.size() == 1 ? "" : "s"));
+      if (!header) header = true;
+      continue;
+    }
+    std::array<double, 2> v{};
+    std::array<bool, 2> number{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const std::string_view f = fields[k];
+      const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v[k]);
+      number[k] = ec == std::errc() && end == f.data() + f.size() && std::isfinite(v[k]);
+    }
+    if (!header) {
+      header = true;
+      if (number[0] && number[1])
+        problem(line_no, "holds two numbers, not a header; the first row names the columns (x, h)");
+      continue;
+    }
+    bool ok = true;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const char* column = k == 0 ? "x" : "h";
+      if (!number[k]) {
+        problem(line_no, fmt::format("\"{}\" in column {} is not a finite number",
+                                     fields[k].size() > 40 ? std::string(fields[k].substr(0, 37)) + "..." :
+                                                             std::string(fields[k]),
+                                     column));
+        ok = false;
+        continue;
+      }
+      const double metres = v[k] * (k == 0 ? x_scale : h_scale);
+      const Bound& span = k == 0 ? x_span : h_span;
+      if (!span.ok(metres)) {
+        problem(line_no, fmt::format("{} = {} m is not allowed; give {}", column, metres, span.allowed));
+        ok = false;
+      }
+    }
+    if (!ok) continue;
+    const double x = v[0] * x_scale, h = v[1] * h_scale;
+    if (!s.x.empty() && !(x > s.x.back())) {
+      problem(line_no, fmt::format("x = {} does not exceed x = {} on line {}; x must increase strictly", fields[0],
+                                   s.x.back() / x_scale, x_line));
+      continue;
+    }
+    s.x.push_back(x), s.h.push_back(h), x_line = line_no;
+  }
+  if (n_problems > kMaxProblemsNamed)
+    problems.push_back(fmt::format("{}: {}: {} more problems", path, file, n_problems - kMaxProblemsNamed));
+  if (n_problems == 0 && !header)
+    problems.push_back(fmt::format("{}: {}: is empty; give a header row naming the columns, then a row x, h per "
+                                   "point (at least two)",
+                                   path, file));
+  else if (n_problems == 0 && s.x.size() < 2)
+    problems.push_back(fmt::format("{}: {}, line {}: {}; a table needs at least two rows x, h below the header row",
+                                   path, file, line_no, s.x.empty() ? "has no data rows" : "has one data row"));
+  return problems.size() == before;
+}
+
+// Reads the file of a table: a regular file of at most kMaxSceneBytes (never a device or a pipe, which could hang
+// or stream without end); its text goes to read_table_csv and its checksum to s.source.
+bool read_table_file(const std::filesystem::path& file, const std::string& path, double x_scale, double h_scale,
+                     ProfileSpec& s, std::vector<std::string>& problems) {
+  namespace fs = std::filesystem;
+  const std::string name = "\"" + file.string() + "\"";
+  std::error_code ec;
+  const auto status = fs::status(file, ec);
+  if (ec || !fs::exists(status)) {
+    problems.push_back(fmt::format("{}: {}: no such file (a relative path is read from the scene's folder)", path, name));
+    return false;
+  }
+  if (!fs::is_regular_file(status)) {
+    problems.push_back(fmt::format("{}: {}: is not a regular file; give a CSV file of x, h", path, name));
+    return false;
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::string text(kMaxSceneBytes + 1, '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  if (in.bad() || (!in && !in.eof())) {
+    problems.push_back(fmt::format("{}: {}: cannot be read", path, name));
+    return false;
+  }
+  text.resize(std::size_t(in.gcount()));
+  if (text.size() > kMaxSceneBytes) {
+    problems.push_back(fmt::format("{}: {}: is larger than {} bytes, the most a table's file may be", path, name,
+                                   kMaxSceneBytes));
+    return false;
+  }
+  if (text.find('\0') != std::string::npos) {
+    problems.push_back(fmt::format("{}: {}: holds a NUL byte; a table's file is CSV text", path, name));
+    return false;
+  }
+  s.source.checksum = fnv1a64(text);
+  return read_table_csv(text, path, name, x_scale, h_scale, s, problems);
+}
+
+// profile.type "table": x and h inline, or a file; their units; the interpolation; a file's checksum.
+void parse_table(Reader& r, ProfileSpec& s, const std::filesystem::path& scene_dir) {
+  std::array<std::optional<double>, 2> scale;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string key = k == 0 ? "x_unit" : "h_unit";
+    const auto unit = r.string(key, "m", kTableUnitWords);
+    if (!unit) continue;
+    for (const auto& [word, metres] : kTableUnits)
+      if (*unit == word) scale[k] = metres;
+    if (!scale[k]) r.problem(r.at(key), fmt::format("\"{}\" is not a unit; use {}", *unit, kTableUnitWords));
+    (k == 0 ? s.source.x_unit : s.source.h_unit) = *unit;
+  }
+  bool interpolation_ok = false;
+  if (const auto word = r.string("interpolation", "linear", interpolation_words())) {
+    try {
+      s.interpolation = interpolation_from_string(*word);
+      interpolation_ok = true;
+    } catch (const InputError& e) {
+      r.problem(r.at("interpolation"), e.what());
+    }
+  }
+  const json* file = r.find("file");
+  const json* checksum = r.find("checksum");
+  bool points_ok = false;
+  const bool inline_points = r.find("x") != nullptr, inline_heights = r.find("h") != nullptr;  // both seen
+  if (file && (inline_points || inline_heights)) {
+    r.problem(r.at("file"), "given with inline x or h; give the table either inline (x and h) or as a file, not both");
+  } else if (file) {
+    if (!file->is_string() || file->get<std::string>().empty()) {
+      r.problem(r.at("file"), fmt::format("{} is {}; give the path of a CSV file of x, h (relative to the scene's "
+                                          "folder)",
+                                          describe(*file), file->is_string() ? "empty" : type_name(*file)));
+    } else if (scale[0] && scale[1]) {
+      const std::filesystem::path given = file->get<std::string>();
+      const std::filesystem::path full = given.is_absolute() ? given : scene_dir / given;
+      std::error_code ec;
+      const std::filesystem::path absolute = std::filesystem::absolute(full, ec).lexically_normal();
+      s.source.file = (ec ? full : absolute).string();
+      points_ok = read_table_file(full, r.at("file"), *scale[0], *scale[1], s, r.problems());
+      if (points_ok && checksum) {
+        if (!checksum->is_string())
+          r.problem(r.at("checksum"), fmt::format("{} is {}; give the file's \"fnv1a64:...\" of a resolved scene",
+                                                  describe(*checksum), type_name(*checksum)));
+        else if (*checksum != s.source.checksum)
+          r.problem(r.at("checksum"),
+                    fmt::format("{} is not the file's checksum, {}: the file changed since the scene was resolved; "
+                                "restore it, or remove checksum to take the file as it is",
+                                describe(*checksum), s.source.checksum));
+      }
+    }
+  } else {
+    if (checksum) r.problem(r.at("checksum"), "given without file; a checksum belongs to a table read from a file");
+    const auto read_array = [&](const std::string& key, double unit, const Bound& span, std::vector<double>& out) {
+      const json* v = r.find(key);
+      if (!v) return r.problem(r.at(key), "missing; give an array of at least two numbers, or a file of x, h");
+      if (!v->is_array())
+        return r.problem(r.at(key), fmt::format("{} is {}; give an array of numbers", describe(*v), type_name(*v)));
+      for (std::size_t i = 0; i < v->size(); ++i) {
+        const json& e = (*v)[i];
+        if (!e.is_number() || !std::isfinite(e.get<double>()))
+          return r.problem(fmt::format("{}[{}]", r.at(key), i), fmt::format("{} is not a finite number", describe(e)));
+        if (!span.ok(e.get<double>() * unit))
+          return r.problem(fmt::format("{}[{}]", r.at(key), i),
+                           fmt::format("{} is not allowed; give {}", describe(e), span.allowed));
+        out.push_back(e.get<double>() * unit);
+      }
+    };
+    if (scale[0]) read_array("x", *scale[0], position(), s.x);
+    if (scale[1]) read_array("h", *scale[1], position("a height"), s.h);
+    const json* xv = r.find("x");
+    const json* hv = r.find("h");
+    if (xv && hv && xv->is_array() && hv->is_array()) {
+      const std::size_t before = r.problems().size();
+      const auto nx = xv->size(), nh = hv->size();
+      if (nx < 2) r.problem(r.at("x"), fmt::format("has {} point(s); a table needs at least two", nx));
+      if (nx != nh) r.problem(r.at("h"), fmt::format("has {} values but x has {}; give one h per x", nh, nx));
+      for (std::size_t i = 1; i < s.x.size(); ++i)
+        if (!(s.x[i] > s.x[i - 1])) {
+          r.problem(fmt::format("{}[{}]", r.at("x"), i),
+                    fmt::format("{} does not exceed the previous {}; x must increase strictly", s.x[i], s.x[i - 1]));
+          break;
+        }
+      points_ok = r.problems().size() == before && s.x.size() == nx && s.h.size() == nh && scale[0] && scale[1];
+    }
+  }
+  // What the interpolation needs of the points, once both are known to be right.
+  if (points_ok && interpolation_ok) {
+    if (s.x.size() < min_table_points(s.interpolation))
+      r.problem(r.at("interpolation"), fmt::format("\"{}\" needs at least {} points; the table has {}: give more "
+                                                   "points or use \"linear\"",
+                                                   to_string(s.interpolation), min_table_points(s.interpolation),
+                                                   s.x.size()));
+    else if (s.interpolation == Interpolation::cubic && !uniformly_spaced(s.x))
+      r.problem(r.at("interpolation"), "\"cubic\" (a cardinal cubic B-spline) needs uniformly spaced x; use "
+                                       "\"makima\" or \"pchip\" for a table on non-uniform x");
+  }
+  if (!points_ok || s.x.size() < min_table_points(s.interpolation) ||
+      (s.interpolation == Interpolation::cubic && !uniformly_spaced(s.x)))
+    s.x = {-1.0, 1.0}, s.h = {0.0, 0.0}, s.interpolation = Interpolation::linear;  // evaluable while reported
+}
+
+ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<std::string>& problems, int depth,
+                          const std::filesystem::path& scene_dir) {
   ProfileSpec s;
   if (!j.is_object()) {
     problems.push_back(fmt::format("{}: {} is {}; give an object with a \"type\"", path, describe(j), type_name(j)));
@@ -260,38 +504,9 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
       s.amplitude = r.number("amplitude", std::nullopt, length("an amplitude")).value_or(1.0);
       s.wavelength = r.number("wavelength", std::nullopt, length("a wavelength")).value_or(1.0);
       break;
-    case ProfileType::table: {
-      auto read_array = [&](const std::string& key, const Bound& span, std::vector<double>& out) {
-        const json* v = r.find(key);
-        if (!v) return r.problem(r.at(key), "missing; give an array of at least two numbers (m)");
-        if (!v->is_array())
-          return r.problem(r.at(key), fmt::format("{} is {}; give an array of numbers (m)", describe(*v), type_name(*v)));
-        for (std::size_t i = 0; i < v->size(); ++i) {
-          const json& e = (*v)[i];
-          if (!e.is_number() || !std::isfinite(e.get<double>()))
-            return r.problem(fmt::format("{}[{}]", r.at(key), i), fmt::format("{} is not a finite number", describe(e)));
-          if (!span.ok(e.get<double>()))
-            return r.problem(fmt::format("{}[{}]", r.at(key), i),
-                             fmt::format("{} is not allowed; give {}", describe(e), span.allowed));
-          out.push_back(e.get<double>());
-        }
-      };
-      read_array("x", position(), s.x);
-      read_array("h", position("a height"), s.h);
-      if (r.find("x") && r.find("h") && (*r.find("x")).is_array() && (*r.find("h")).is_array()) {
-        const auto nx = r.find("x")->size(), nh = r.find("h")->size();
-        if (nx < 2) r.problem(r.at("x"), fmt::format("has {} point(s); a table needs at least two", nx));
-        if (nx != nh) r.problem(r.at("h"), fmt::format("has {} values but x has {}; give one h per x", nh, nx));
-        for (std::size_t i = 1; i < s.x.size(); ++i)
-          if (!(s.x[i] > s.x[i - 1])) {
-            r.problem(fmt::format("{}[{}]", r.at("x"), i),
-                      fmt::format("{} does not exceed the previous {}; x must increase strictly", s.x[i], s.x[i - 1]));
-            break;
-          }
-      }
-      if (s.x.size() < 2 || s.x.size() != s.h.size()) s.x = {-1.0, 1.0}, s.h = {0.0, 0.0};
+    case ProfileType::table:
+      parse_table(r, s, scene_dir);
       break;
-    }
     case ProfileType::sum:
     case ProfileType::envelope: {
       const json* v = r.find("terms");
@@ -304,7 +519,8 @@ ProfileSpec parse_profile(const json& j, const std::string& path, std::vector<st
         r.problem(r.at("terms"), fmt::format("profiles nest deeper than {} levels", kMaxProfileDepth));
       } else {
         for (std::size_t i = 0; i < v->size(); ++i)
-          s.terms.push_back(parse_profile((*v)[i], fmt::format("{}[{}]", r.at("terms"), i), problems, depth + 1));
+          s.terms.push_back(
+              parse_profile((*v)[i], fmt::format("{}[{}]", r.at("terms"), i), problems, depth + 1, scene_dir));
       }
       if (s.terms.empty()) {
         ProfileSpec placeholder;  // keeps the tree evaluable while the problem is reported
@@ -346,7 +562,15 @@ json profile_to_json(const ProfileSpec& s) {
     case ProfileType::wedge: j["angle_deg"] = s.angle_deg; break;
     case ProfileType::rounded_wedge: j["angle_deg"] = s.angle_deg; j["R"] = s.R; break;
     case ProfileType::wavy: j["amplitude"] = s.amplitude; j["wavelength"] = s.wavelength; break;
-    case ProfileType::table: j["x"] = s.x; j["h"] = s.h; break;
+    case ProfileType::table:
+      if (s.source.file.empty()) {  // inline: in metres, whatever units the scene gave
+        j["x"] = s.x, j["h"] = s.h;
+      } else {  // the file, its units and its checksum: a changed file is refused when the scene is run again
+        j["file"] = s.source.file, j["x_unit"] = s.source.x_unit, j["h_unit"] = s.source.h_unit;
+        j["checksum"] = s.source.checksum;
+      }
+      j["interpolation"] = to_string(s.interpolation);
+      break;
     case ProfileType::sum:
     case ProfileType::envelope: {
       j["terms"] = json::array();
@@ -473,6 +697,8 @@ struct Given {
   bool friction = false, load_read = false, P_ok = false, Q = false, delta = false, history = false;
   bool window = false, reference_depth = false;
   bool effects_unknown = false;  // effects given but not an object: what they need is unknown
+  bool loads_unknown = false;    // load.blocks given but its first block's load is unreadable
+  bool wear_cycles_ok = true;    // effects.wear.cycles as given (the blocks' total is checked against it)
   std::optional<LoadControl> control = LoadControl::force;  // nullopt: an invalid word
 };
 
@@ -578,6 +804,7 @@ void parse_history(const json* hv, Reader& r, std::vector<std::array<double, 4>>
 // scene's own (the cycle stage's), and `given` says what it gives, as if given at the top of load.
 void parse_blocks(const json* bv, Reader& r, Scene& s, Given& given, std::vector<std::string>& problems) {
   if (!bv->is_array() || bv->empty()) {
+    given.loads_unknown = true;
     r.problem("load.blocks", fmt::format("{} is not {}; give a list of blocks {{\"Q\": {{...}} or \"delta\": d or "
                                          "\"history\": [...], \"cycles\": N}}",
                                          describe(*bv), bv->is_array() ? "a non-empty list" : "a list"));
@@ -586,6 +813,9 @@ void parse_blocks(const json* bv, Reader& r, Scene& s, Given& given, std::vector
   for (std::size_t i = 0; i < bv->size(); ++i) {
     const std::string at = fmt::format("load.blocks[{}]", i);
     const json& b = (*bv)[i];
+    // The first block's load stands for the scene's: unreadable, what the effects need of it is unknown too.
+    if (i == 0 && (!b.is_object() || int(b.contains("Q")) + int(b.contains("delta")) + int(b.contains("history")) != 1))
+      given.loads_unknown = true;
     if (!b.is_object()) {
       r.problem(at, fmt::format("{} is not an object; give {{\"Q\": {{...}} or \"delta\": d or \"history\": "
                                 "[...], \"cycles\": N}}",
@@ -626,7 +856,7 @@ void parse_blocks(const json* bv, Reader& r, Scene& s, Given& given, std::vector
   s.Q_amplitude = first.Q_amplitude, s.Q_ratio = first.Q_ratio, s.delta = first.delta, s.history = first.history;
   s.control = first.delta ? LoadControl::displacement : LoadControl::force;
   given.control = s.control;
-  given.Q = first.Q_amplitude || first.Q_ratio;
+  given.Q = (*bv)[0].is_object() && (*bv)[0].contains("Q");
   given.delta = first.delta.has_value();
   given.history = !first.history.empty();
 }
@@ -787,8 +1017,10 @@ void parse_wear_coefficients(Reader& rw, const json& w, WearEffect& effect) {
   const bool archard = effect.law == wear::Law::archard;
   const std::string key = archard ? "k" : "alpha", other = archard ? "alpha" : "k";
   const std::string pad = key + "_pad", specimen = key + "_specimen";
+  bool other_given = false;
   for (const std::string& o : {other, other + "_pad", other + "_specimen"})
     if (w.contains(o)) {
+      other_given = true;
       rw.find(o);
       rw.problem("effects.wear." + o,
                  fmt::format("belongs to the other law; the {} law takes \"{}\" (or \"{}\" and \"{}\")",
@@ -798,7 +1030,8 @@ void parse_wear_coefficients(Reader& rw, const json& w, WearEffect& effect) {
                                    "1/Pa", true);
   const bool together = w.contains(key), each = w.contains(pad) || w.contains(specimen);
   if (!each) {
-    effect.coefficient = rw.number(key, std::nullopt, coefficient).value_or(1e-15);
+    // The other law's coefficient in its place is one mistake, reported above, not also a missing key.
+    if (together || !other_given) effect.coefficient = rw.number(key, std::nullopt, coefficient).value_or(1e-15);
     return;
   }
   effect.per_body = true;
@@ -830,7 +1063,7 @@ void parse_wear_coefficients(Reader& rw, const json& w, WearEffect& effect) {
 }
 
 // effects.wear: the law and its coefficient, the share of the pad, the cycles, the stepper, the records.
-void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
+void parse_wear(Reader& r, Scene& s, Given& given, std::vector<std::string>& problems) {
   if (const json* w = r.object("wear", false)) {
     Reader rw(*w, "effects.wear", problems);
     WearEffect effect;
@@ -857,6 +1090,7 @@ void parse_wear(Reader& r, Scene& s, std::vector<std::string>& problems) {
     const auto cycles = rw.number("cycles", std::nullopt, {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
                                                            "a whole number of cycles from 1 to 1e12"});
     effect.cycles = cycles.value_or(1e12);  // records are checked against the cycles only when they are valid
+    given.wear_cycles_ok = cycles.has_value();
     if (const auto stepper = rw.string("stepper", "implicit", stepper_words())) {
       try {
         effect.stepper = stepper_from_string(*stepper);
@@ -945,7 +1179,10 @@ std::optional<LifeGrowth> parse_growth(Reader& r, std::vector<std::string>& prob
     ok = false;
   }
   g.el_haddad = short_crack && *short_crack == "el_haddad";
-  if (g.el_haddad) {
+  const bool short_crack_known = short_crack && (*short_crack == "none" || g.el_haddad);
+  if (!short_crack_known) {
+    rg.find("fatigue_limit");  // whether it belongs is unknown until the correction is
+  } else if (g.el_haddad) {
     const auto limit = rg.number("fatigue_limit", std::nullopt, within(1e3, 1e11, "a fatigue limit (stress range)", "Pa"));
     if (limit) g.fatigue_limit = *limit;
     ok = ok && limit;
@@ -1074,7 +1311,7 @@ void parse_effects(Reader& top, Scene& s, Given& given, std::vector<std::string>
   if (!e) return;
   Reader r(*e, "effects", problems);
   parse_tangential(r, s, problems);
-  parse_wear(r, s, problems);
+  parse_wear(r, s, given, problems);
   parse_stress(r, s, problems);
   parse_crack(r, s, problems);
   parse_life(r, s, problems);
@@ -1115,7 +1352,7 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
         problems.push_back("load.blocks: given without effects.wear; the cycle effect computes one steady cycle, and "
                            "only the wear stage runs the blocks one after another: add effects.wear, or give the one "
                            "load as load.Q, load.delta or load.history");
-      else if (s.wear->cycles != total)
+      else if (given.wear_cycles_ok && s.wear->cycles != total)
         problems.push_back(fmt::format("effects.wear.cycles: {} is not the blocks' total, {}; the wear runs "
                                        "load.blocks once, in order: give their sum",
                                        s.wear->cycles, total));
@@ -1154,7 +1391,7 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
                 std::abs(pt[2]), *s.friction * pt[1], pt[0]));
             break;
           }
-    } else if (!given.control || !given.load_read) {
+    } else if (!given.control || !given.load_read || given.loads_unknown) {
       // the load control is unknown, or so is the whole load: nothing more to ask for
     } else if (given.control == LoadControl::force) {
       if (!given.Q)
@@ -1237,7 +1474,7 @@ void check_window(const Scene& s, const Given& given, std::vector<std::string>& 
 
 }  // namespace
 
-Scene parse_scene(const json& j, const std::string& default_name) {
+Scene parse_scene(const json& j, const std::string& default_name, const std::filesystem::path& scene_dir) {
   std::vector<std::string> problems;
   Scene s;
   if (!j.is_object()) throw SceneError({fmt::format("(top): the scene is {}; give a JSON object", type_name(j))});
@@ -1248,7 +1485,7 @@ Scene parse_scene(const json& j, const std::string& default_name) {
   parse_materials(top, s, problems);
   given.materials_ok = problems.size() == n_problems_before_materials;
   if (const json* p = top.find("profile")) {
-    s.profile = parse_profile(*p, "profile", problems, 0);
+    s.profile = parse_profile(*p, "profile", problems, 0, scene_dir);
   } else {
     top.problem("profile", "missing; give an object with a \"type\" (" + profile_type_words() + ")");
   }
@@ -1471,7 +1708,8 @@ class SceneText {
 
 }  // namespace
 
-Scene parse_scene_text(std::string_view text, const std::string& default_name, const std::string& source) {
+Scene parse_scene_text(std::string_view text, const std::string& default_name, const std::string& source,
+                       const std::filesystem::path& scene_dir) {
   json j;
   SceneText reader(text, source, j);
   const bool complete = json::sax_parse(reader.begin(), reader.end(), &reader);
@@ -1482,7 +1720,7 @@ Scene parse_scene_text(std::string_view text, const std::string& default_name, c
     throw SceneError({fmt::format("{}: holds a NUL byte on line {}; a scene is UTF-8 text", source,
                                   1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'))});
   try {
-    Scene s = parse_scene(j, default_name);
+    Scene s = parse_scene(j, default_name, scene_dir);
     if (problems.empty()) return s;
   } catch (const SceneError& e) {
     problems.insert(problems.end(), e.problems().begin(), e.problems().end());
@@ -1504,7 +1742,7 @@ Scene load_scene(const std::filesystem::path& path) {
   if (!in) throw SceneError({path.string() + ": cannot be opened for reading"});
   std::stringstream buf;
   buf << in.rdbuf();
-  return parse_scene_text(buf.str(), path.stem().string(), path.string());
+  return parse_scene_text(buf.str(), path.stem().string(), path.string(), path.parent_path());
 }
 
 json Scene::to_json() const {

@@ -217,15 +217,17 @@ constexpr double kMinWearCoefficient = 1e-30;
 constexpr double kMaxWearCoefficient = 1.0;
 }  // namespace spans
 
-// Validates j as a scene; throws SceneError listing every problem. default_name names a scene without "name".
-Scene parse_scene(const nlohmann::json& j, const std::string& default_name = "scene");
+// Validates j as a scene; throws SceneError listing every problem. default_name names a scene without "name";
+// scene_dir is the folder a table's relative "file" is read from (empty: the working folder).
+Scene parse_scene(const nlohmann::json& j, const std::string& default_name = "scene",
+                  const std::filesystem::path& scene_dir = {});
 // Reads the JSON text of a scene and validates it (parse_scene). Problems of the text are SceneErrors naming the
 // JSON path and the line, listed before parse_scene's: a key given twice in an object, a number that overflows a
 // double, nesting deeper than kMaxSceneDepth; and text that is not JSON (UTF-8), named by source. Only a key given
 // twice lets parse_scene run as well; the others stop the reading. Throws nothing but SceneError (and bad_alloc).
 Scene parse_scene_text(std::string_view text, const std::string& default_name = "scene",
-                       const std::string& source = "the scene");
-// Reads a scene file and parses its text; file problems (missing, a directory, too large) are SceneErrors too.
+                       const std::string& source = "the scene", const std::filesystem::path& scene_dir = {});
+// Reads a scene file and parses its text, a table's relative file read from the scene file's folder; file problems (missing, a directory, too large) are SceneErrors too.
 Scene load_scene(const std::filesystem::path& path);
 // The default scene, as `fretwear defaults [--effect NAME]` prints it: PHYSICS.md's Hertz contact with every effect
 // and every key written out (required ones at that case's values), or with one effect (and the load cycle it

@@ -14,7 +14,9 @@
 // The very path `fretwear validate` takes: parse_scene_text (what load_scene hands the file's text to), then the
 // output folder's rules and the physics checks before solving (engine/preflight.hpp). Only an InputError (a scene's
 // problems) may escape; anything else is a bug for the fuzzer to find. The grid and the cycle's increments are
-// capped so that one input takes milliseconds: the checks' logic, not the solvers' cost, is what is fuzzed here.
+// capped so that one input takes milliseconds: the checks' logic, not the solvers' cost, is what is fuzzed here. A
+// profile's "file" is read relative to the working folder; the parser reads only a regular file, at most
+// kMaxSceneBytes of it, so no input can make it block on a device or a pipe or read without end.
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     fretwear::Scene scene =

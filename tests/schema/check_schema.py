@@ -63,10 +63,11 @@ def errors(instance):
     return sorted(e.message for e in validator.iter_errors(instance))
 
 
-scenes = sorted(glob.glob(os.path.join(examples, "*.json")))
+# Examples with files of their own (a measured profile's CSV) sit in a folder each.
+scenes = sorted(glob.glob(os.path.join(examples, "*.json")) + glob.glob(os.path.join(examples, "*", "*.json")))
 check(len(scenes) > 0, "examples found")
 for path in scenes:
-    name = os.path.basename(path)
+    name = os.path.relpath(path, examples)
     check(not errors(json.load(open(path))), "example %s validates" % name, "; ".join(errors(json.load(open(path))))[:400])
     out = subprocess.run([exe, "validate", "-v", path], capture_output=True, text=True)
     check(out.returncode == 0, "fretwear validates %s" % name, out.stderr[-300:])
@@ -95,6 +96,12 @@ bad = {
     "window end beyond 100 m": dict(base, grid={"window": [-1e200, 1e200]}),
     "denormal modulus": dict(base, materials={"both": {"E": 1e-310, "nu": 0.3}}),
     "normal load above 1e12 N/m": dict(base, load={"P": 1e13}),
+    "table file with inline x": dict(base, profile={"type": "table", "file": "pad.csv", "x": [0, 1], "h": [0, 1]}),
+    "table interpolation typo": dict(base, profile={"type": "table", "x": [-1e-4, 0, 1e-4, 2e-4],
+                                                    "h": [1e-6, 0, 1e-6, 4e-6], "interpolation": "spline"}),
+    "table unit typo": dict(base, profile={"type": "table", "x": [-100, 0, 100], "h": [1, 0, 1], "x_unit": "micron"}),
+    "table checksum inline": dict(base, profile={"type": "table", "x": [-1e-4, 0], "h": [1e-6, 0],
+                                                 "checksum": "fnv1a64:0123456789abcdef"}),
     "history stress above 1e12 Pa": dict(base, friction=0.5, effects={"tangential": {}},
                                           load={"P": 1e5, "history": [[0, 1e5, 0, 0], [1, 1e5, 1e4, 2e12],
                                                                       [2, 1e5, 0, 0]]}),

@@ -255,8 +255,8 @@ TEST_CASE("the wear effect: law and its coefficient, cycles, stepper, tolerance,
   }
   j["effects"]["wear"] = {{"law", "energy"}, {"k", 1e-15}, {"cycles", 1.5}, {"stepper", "rk45"},
                           {"tolerance", 0.5}, {"record", {10, 5}}, {"pad_fraction", 2}};
-  CHECK(reports(j, "effects.wear.alpha", {"missing"}));
-  CHECK(reports(j, "effects.wear.k", {"other law"}));
+  CHECK(reports(j, "effects.wear.k", {"other law", "takes \"alpha\""}));
+  CHECK_FALSE(reports(j, "effects.wear.alpha", {"missing"}));  // the same mistake, reported once, as k's
   CHECK(reports(j, "effects.wear.cycles", {"whole number"}));
   CHECK(reports(j, "effects.wear.stepper", {"not a stepper", "\"implicit\"", "\"explicit\"", "\"cycle_by_cycle\""}));
   CHECK(reports(j, "effects.wear.tolerance", {"[1e-5, 0.1]"}));

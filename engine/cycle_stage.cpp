@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "contact/closed_form.hpp"
 #include "contact/incremental_slip.hpp"
 #include "contact/reference_datum.hpp"
 #include "engine/plot.hpp"
@@ -29,13 +30,36 @@ std::string cycle_csv(const NormalResult& n, const CycleStage& st) {
   return s;
 }
 
+// The Cattaneo–Mindlin traction at the top of the cycle where PHYSICS.md has it ("Partial slip"): Hertz under force
+// control, similar bodies, one steady partial-slip cycle. q = f p0 [√(1 − x²/a²) − (c/a) √(1 − (x − e)²/c²)] in
+// the stick zone, f p outside it, with c/a = √(1 − Q/fP) and the shift e/a = σ/(4 f p0) of a bulk tension (Nowell
+// and Hills 1987). gnuplot definitions in mm and MPa, and the term of the plot command; empty where it does not hold.
+std::pair<std::string, std::string> mindlin_traction(const Scene& scene, const NormalResult& n, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  if (!n.reference || n.reference->kind != "hertz" || scene.control != LoadControl::force || !scene.history.empty() ||
+      st.plan.dissimilar() || c.regime != Regime::partial_slip || !c.stick_zone)
+    return {};
+  const closed_form::Hertz h{n.reference->half_width, n.reference->p_max};
+  const double ratio = st.Q_max / (st.f * scene.P);
+  const closed_form::StickZone z = closed_form::hertz_stick(h, ratio, st.f, st.bulk_stress);
+  const std::string defs = fmt::format(
+      "cm_x0 = {}; cm_a = {}; cm_p0 = {}; cm_f = {}; cm_c = {}; cm_e = {}\nset samples 2000\n"
+      "cm_q(x) = abs(x - cm_x0) >= cm_a ? 1/0 : cm_f*cm_p0*(sqrt(1 - ((x - cm_x0)/cm_a)**2) - "
+      "(abs(x - cm_x0 - cm_e) < cm_c ? (cm_c/cm_a)*sqrt(1 - ((x - cm_x0 - cm_e)/cm_c)**2) : 0))\n",
+      num(n.reference->centre * 1e3), num(h.a * 1e3), num(h.p0 * 1e-6), num(st.f), num(z.c * 1e3), num(z.centre * 1e3));
+  const std::string term = fmt::format(", cm_q(x) with lines lw 2 dt 3 lc rgb '#000000' title 'Cattaneo–Mindlin, top "
+                                       "(c/a = {:.4g})'",
+                                       z.c / h.a);
+  return {defs, term};
+}
+
 std::string cycle_plot_script(const Scene& scene, const NormalResult& n, const CycleStage& st) {
   const CycleResult& c = st.result;
   std::string head = fmt::format(R"(# The load cycle. Re-run with: gnuplot cycle.gp
 set datafile separator ','
 set xlabel 'x (mm)'
 set grid
-set key outside right top
+set key below maxrows 3
 set xrange [{}:{}]
 )", n.grid.x_min * 1e3, n.grid.x_max * 1e3);
   std::string marks;
@@ -43,7 +67,8 @@ set xrange [{}:{}]
     marks = fmt::format("set object 1 rect from {},graph 0 to {},graph 1 back fc rgb '#eeeeee' fs solid noborder\n",
                         c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
   const double f = st.f;
-  std::string s = head + marks;
+  const auto [mindlin_defs, mindlin_term] = mindlin_traction(scene, n, st);
+  std::string s = head + marks + mindlin_defs;
   s += fmt::format("set title \"{}: shear traction at the four phases (Q/fP = {:.3g}, f = {:.3g}; {})\" noenhanced\n",
                    scene.name, st.Q_max / (f * scene.P), f, c.stick_zone ? "grey: stick zone" : "gross slip: no stick zone");
   s += "set ylabel 'shear traction q (MPa)'\n";
@@ -64,8 +89,8 @@ set xrange [{}:{}]
       "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+{0})', "
       "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded ({0} = 0)', "
       "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-{0})', "
-      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({0} = 0)'\n",
-      scene.control == LoadControl::displacement ? "δ" : "Q");  // the phases of the controlled quantity
+      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({0} = 0)'{1}\n",
+      scene.control == LoadControl::displacement ? "δ" : "Q", mindlin_term);  // the phases of the controlled quantity
   const std::string traction_plot = s.substr(s.find("plot 'cycle.csv'"));
   std::string out = s.substr(0, s.find("plot 'cycle.csv'"));
   out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'traction.svg'\n" + traction_plot;

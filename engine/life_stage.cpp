@@ -318,12 +318,12 @@ std::string life_plot_script(const Scene& scene, const LifeStage& life) {
   }
   if (life.initiation && life.initiation->map_y.size() > 1) {
     const LifeInitiationResult& i = *life.initiation;
-    s += "reset\nset datafile separator ','\nset view map\nset pm3d map\nset palette cubehelix\n";
+    s += "reset\nset datafile separator ','\nset view map\nset pm3d map\n" + colour_map_settings("damage D (Miner)");
     s += fmt::format("set title \"{}: Miner's damage {} (red: the site, x = {:.4g} mm)\" noenhanced\n", scene.name,
                      std::isfinite(i.cycles) ? fmt::format("at initiation, N = {:.4g}", i.cycles)
                                              : fmt::format("after {:.4g} cycles", scene.life->cycles_max),
                      i.x * 1e3);
-    s += fmt::format("set xlabel 'x (mm)'\nset ylabel 'depth y (µm)'\nset yrange [{}:0]\nset cblabel 'damage'\n",
+    s += fmt::format("set xlabel 'x (mm)'\nset ylabel 'depth y (µm)'\nset yrange [{}:0]\n",
                      i.map_y.back() * 1e6);
     s += "set datafile separator whitespace\n";
     s += png_only("life_damage", fmt::format("splot 'life_damage.dat' using ($1*1e3):($2*1e6):3 with pm3d notitle, "

@@ -126,6 +126,24 @@ double hertz_worn_area_limit(double a, double c, double R) {
   return (a * a * (xe * std::acosh(xe / c) - r) - r * r * r / 3.0) / R;
 }
 
+}  // namespace
+
+double hertz_dissipated_energy(double f, double p0, double a, double c, double R) {
+  constexpr int kPoints = 4000;  // the integrand is smooth in t: the sum converges far below the solver's accuracy
+  const double pi = std::acos(-1.0);
+  double sum = 0.0;
+  for (int k = 0; k < kPoints; ++k) {
+    const double t = (k + 0.5) * pi / kPoints, x = c + 0.5 * (a - c) * (1.0 - std::cos(t));
+    const double dx = 0.5 * (a - c) * std::sin(t) * pi / kPoints;
+    const double p = p0 * std::sqrt(std::max(0.0, 1.0 - x * x / (a * a)));
+    const double g = f / (2.0 * R) * (x * std::sqrt(std::max(0.0, x * x - c * c)) - c * c * std::acosh(std::max(1.0, x / c)));
+    sum += p * g * dx;
+  }
+  return 8.0 * f * sum;
+}
+
+namespace {
+
 const char* kStyle = R"(<style>
 body{font-family:sans-serif;max-width:1200px;margin:1.5em auto;padding:0 1em;color:#222;line-height:1.4}
 h1{margin-bottom:0.2em} h2{border-bottom:2px solid #ccc;padding-bottom:0.2em;margin-top:2em}
@@ -262,6 +280,10 @@ std::vector<ClosedFormRow> closed_form_rows(const std::string& id, const Scene& 
       if (cycle->bulk_stress != 0.0)
         rows.push_back({"stick-zone centre e (from the contact's centre)", "mm", (centre - ref->centre) * 1e3,
                         z.centre * 1e3, "Nowell and Hills 1987, e/a = σ/(4 f p0)"});
+      else if (!cycle->result.slip_range.empty())  // the fretting loop's area
+        rows.push_back({"energy dissipated per cycle (the loop's area)", "J/m", cycle->result.dissipated_energy,
+                        hertz_dissipated_energy(f, h.p0, h.a, z.c, scene.profile.R),
+                        "Hertz, E = 8 f ∫ p g dx over the slip zones"});
     } else if (ref->kind == "rounded_punch" && cycle->bulk_stress == 0.0) {
       const double cf =
           closed_form::rounded_punch_stick(closed_form::rounded_punch(scene.P, A, scene.profile.a, scene.profile.R),

@@ -45,6 +45,11 @@ struct ClosedFormRow {
 std::vector<ClosedFormRow> closed_form_rows(const std::string& id, const Scene& scene, const RunResult& result,
                                             const nlohmann::json& summary);
 
+// The energy a Hertz contact dissipates per ±Q cycle, per unit length (J/m): the area of its fretting loop.
+// E = 8 f ∫_c^a p g dx with p = p0 √(1 − x²/a²) and the slip g = (f/(2R)) [x √(x² − c²) − c² arccosh(x/c)]
+// (PHYSICS.md, "Partial slip"; Mindlin and Deresiewicz 1953 in the plane). Quadrature in x = c + (a − c)(1 − cos t)/2.
+double hertz_dissipated_energy(double f, double p0, double a, double c, double R);
+
 // The whole page.
 std::string report_html(const Scene& scene, const RunResult& result, const nlohmann::json& summary,
                         const nlohmann::json& resolved_scene, const std::vector<std::string>& plots,

@@ -37,11 +37,14 @@ std::string escape(const std::string& s) {
 const DisplayUnit kMm{"mm", 1e3}, kUm{"µm", 1e6}, kMPa{"MPa", 1e-6}, kGPa{"GPa", 1e-9}, kSif{"MPa·√m", 1e-6},
     kForce{"N/mm", 1e-3}, kNone{"", 1.0};
 
-// A number as the page shows it: 4 significant digits, integers as they are.
+// A number as the page shows it: 4 significant digits, integers as they are, exponents as 1e7 and 2.5e-5.
 std::string shown(double v) {
   if (std::isinf(v)) return v > 0 ? "∞" : "−∞";
   if (v == std::round(v) && std::abs(v) < 1e7) return fmt::format("{:.0f}", v);
-  return fmt::format("{:.4g}", v);
+  std::string s = fmt::format("{:.4g}", v);
+  const std::size_t e = s.find('e');
+  if (e != std::string::npos) s = s.substr(0, e + 1) + std::to_string(std::stoi(s.substr(e + 1)));
+  return s;
 }
 
 // A summary value in its display unit: numbers scaled, arrays of them element by element, words as they are.
@@ -72,12 +75,12 @@ void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std
 std::string table_html(const json& summary, const ReportSection& section) {
   std::vector<std::pair<std::string, const json*>> all, rows;
   flatten(summary, "", all);
-  for (const auto& [path, v] : all) {
-    const bool in = std::any_of(section.prefixes.begin(), section.prefixes.end(),
-                                [&path](const std::string& p) { return path == p || starts_with(path, p + "."); });
-    const bool out = std::any_of(section.exclude.begin(), section.exclude.end(),
-                                 [&path](const std::string& p) { return path == p || starts_with(path, p + "."); });
-    if (in && !out) rows.emplace_back(path, v);
+  for (const auto& row : all) {
+    const std::string& path = row.first;  // a plain name: lambdas may not capture structured bindings (clang 14)
+    auto under = [&path](const std::string& p) { return path == p || starts_with(path, p + "."); };
+    const bool in = std::any_of(section.prefixes.begin(), section.prefixes.end(), under);
+    const bool out = std::any_of(section.exclude.begin(), section.exclude.end(), under);
+    if (in && !out) rows.push_back(row);
   }
   if (rows.empty()) return "";
   std::string s = "<table class=\"values\"><thead><tr><th>quantity</th><th>value</th><th>unit</th></tr></thead>"

@@ -199,9 +199,9 @@ set grid
   double area_lo = area_top;
   for (const WearRecord& rec : w.records)
     if (rec.cycles > 0.0 && rec.worn_area > 0.0) area_lo = std::min(area_lo, 0.5 * rec.worn_area);
-  s += "set logscale y\nset format y '%h'\nset key inside right bottom opaque box\n"
-       "set ylabel 'worn area ∫ w dx (µm²)'\n";
-  if (area_top > 0.0) {
+  s += "set key inside right bottom opaque box\nset ylabel 'worn area ∫ w dx (µm²)'\n";
+  if (area_top > 0.0 && area_lo < area_top) {  // nothing worn yet: no log axis to draw it on
+    s += "set logscale y\nset format y '%h'\n";
     s += fmt::format("set yrange [{}:{}]\n", area_lo * 1e12, area_top * 1e12);
     if (a.worn_area > 0.0)
       s += fmt::format("set logscale y2\nset y2range [{}:{}]\nset y2label 'fraction of the asymptote'\n"

@@ -16,7 +16,7 @@ namespace fretwear {
 struct ConvergenceRow {
   int cells = 0, cells_in_contact = 0, iterations = 0;
   double x_left = 0.0, x_right = 0.0, p_max = 0.0;
-  double extent_error = 0.0, p_max_error = 0.0, rms_error = 0.0;  // rms_error only against a closed form
+  double extent_error = 0.0, p_max_error = 0.0, rms_error = 0.0;  // rms_error only against a closed form (has_rms)
   double seconds = 0.0;  // wall time of the normal solve
   // With effects.tangential: the stick zone at the top of the cycle (m) and max |edge − reference| / c_reference.
   bool has_stick = false;
@@ -27,6 +27,12 @@ struct ConvergenceStudy {
   std::string against;  // "hertz", "rounded_punch", "flat_punch" or "finest grid"
   std::string stick_against;  // with effects.tangential: "hertz", "rounded_punch" or "finest grid"
   std::vector<ConvergenceRow> rows;
+  // The scene's effects the study does not run ("wear", "stress", "crack", "life"): it refines the normal problem
+  // and the cycle only. table() says so in a line.
+  std::vector<std::string> not_studied;
+  // Whether the RMS pressure error has a meaning: only against a closed form (against the finest grid there is no
+  // pressure field to compare cell by cell), and table() and csv() leave the column out otherwise.
+  bool has_rms() const { return against != "finest grid"; }
   // Observed order of the extent error between consecutive grids, log2(e_k / e_{k+1}).
   std::vector<double> observed_order() const;
   // The same for the stick-zone error (empty without effects.tangential).

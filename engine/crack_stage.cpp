@@ -21,8 +21,8 @@ std::string sif_csv(const std::vector<SifSet>& sifs) {
   return s;
 }
 
-// crack.gp: K_I and K_II against crack length, top (solid) and bottom (dashed) of the cycle, the initial and the
-// last state, the records between in thin lines.
+// crack.gp: K_I and K_II against crack length, top (solid) and bottom (dashed) of the cycle, every state labelled
+// by its cycle count, the initial and the last in thick lines.
 std::string crack_plot_script(const Scene& scene, const std::vector<SifSet>& sifs, double x, bool worn) {
   std::vector<double> states;
   for (const SifSet& set : sifs)
@@ -39,24 +39,31 @@ set title "{}: crack at x = {:.4g} mm ({}), {}" noenhanced
                                   ? std::string("normal to the surface")
                                   : fmt::format("at {:g}° to the surface, face friction {:g}", scene.crack->angle_deg,
                                                 scene.crack->face_friction));
-  for (const char* mode : {"K_I", "K_II"}) {
-    const int col = std::string(mode) == "K_I" ? 4 : 6;
+  // Every state's curve in the key by its cycle count; with two phases, the top solid and the bottom dashed, said
+  // once by two black key entries.
+  for (const char* mode : {"K_{I}", "K_{II}"}) {
+    const int col = std::string(mode) == "K_{I}" ? 4 : 6;
     std::string plot = "plot ";
+    if (lo != hi)
+      plot += fmt::format("NaN with lines lw 2 lc rgb '#000000' title '{0}', NaN with lines lw 2 dt 2 "
+                          "lc rgb '#000000' title '{1}', ",
+                          hi, lo);
     for (std::size_t k = 0; k < states.size(); ++k) {
-      const bool shown = k == 0 || k + 1 == states.size();
+      const bool ends = k == 0 || k + 1 == states.size();
       const double t = states.size() > 1 ? double(k) / double(states.size() - 1) : 0.0;
-      auto line = [&](const std::string& phase, const char* dash) {
+      auto line = [&](const std::string& phase, const char* dash, bool titled) {
+        const std::string title = worn ? cycles_label(states[k]) : std::string("initial");
         return fmt::format("'sif.csv' skip 1 using ($1 == {} && strcol(2) eq '{}' ? $3*1e6 : 1/0):(${}*1e-6) with "
                            "linespoints pt 7 ps 0.4 lw {} {} lc rgb '{}' {}, ",
-                           num(states[k]), phase, col, shown ? 2.0 : 0.7, dash, ramp(t),
-                           shown ? fmt::format("title '{}, {}'", worn ? cycles_label(states[k]) : "initial", phase)
-                                 : std::string("notitle"));
+                           num(states[k]), phase, col, ends ? 2.0 : 1.0, dash, ramp(t),
+                           titled ? fmt::format("title '{}{}'", title, lo != hi ? "" : ", " + phase)
+                                  : std::string("notitle"));
       };
-      plot += line(hi, "");
-      if (lo != hi) plot += line(lo, "dt 2");
+      plot += line(hi, "", true);
+      if (lo != hi) plot += line(lo, "dt 2", false);
     }
     plot.resize(plot.size() - 2);
-    s += fmt::format("set ylabel '{} (MPa√m)'\n", mode);
+    s += fmt::format("set ylabel '{} (MPa·√m)'\n", mode);
     s += svg_and_png(std::string("sif_") + (col == 4 ? "I" : "II"), plot + "\n");
   }
   return s;

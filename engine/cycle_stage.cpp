@@ -5,9 +5,11 @@
 
 #include <fmt/format.h>
 
+#include "contact/closed_form.hpp"
 #include "contact/incremental_slip.hpp"
 #include "contact/reference_datum.hpp"
 #include "engine/plot.hpp"
+#include "engine/report.hpp"
 
 namespace fretwear {
 namespace {
@@ -29,13 +31,46 @@ std::string cycle_csv(const NormalResult& n, const CycleStage& st) {
   return s;
 }
 
+// The Cattaneo–Mindlin traction at the top of the cycle where PHYSICS.md has it ("Partial slip"): Hertz under force
+// control, similar bodies, one steady partial-slip cycle. q = f p0 [√(1 − x²/a²) − (c/a) √(1 − (x − e)²/c²)] in
+// the stick zone, f p outside it, with c/a = √(1 − Q/fP) and the shift e/a = σ/(4 f p0) of a bulk tension (Nowell
+// and Hills 1987). gnuplot definitions in mm and MPa, and the term of the plot command; empty where it does not hold.
+struct Mindlin {
+  closed_form::Hertz h;
+  closed_form::StickZone z;
+};
+std::optional<Mindlin> mindlin(const Scene& scene, const NormalResult& n, const CycleStage& st) {
+  const CycleResult& c = st.result;
+  if (!n.reference || n.reference->kind != "hertz" || scene.control != LoadControl::force || !scene.history.empty() ||
+      st.plan.dissimilar() || c.regime != Regime::partial_slip || !c.stick_zone)
+    return std::nullopt;
+  const closed_form::Hertz h{n.reference->half_width, n.reference->p_max};
+  return Mindlin{h, closed_form::hertz_stick(h, st.Q_max / (st.f * scene.P), st.f, st.bulk_stress)};
+}
+
+std::pair<std::string, std::string> mindlin_traction(const Scene& scene, const NormalResult& n, const CycleStage& st) {
+  const std::optional<Mindlin> m = mindlin(scene, n, st);
+  if (!m) return {};
+  const closed_form::Hertz& h = m->h;
+  const closed_form::StickZone& z = m->z;
+  const std::string defs = fmt::format(
+      "cm_x0 = {}; cm_a = {}; cm_p0 = {}; cm_f = {}; cm_c = {}; cm_e = {}\nset samples 2000\n"
+      "cm_q(x) = abs(x - cm_x0) >= cm_a ? 1/0 : cm_f*cm_p0*(sqrt(1 - ((x - cm_x0)/cm_a)**2) - "
+      "(abs(x - cm_x0 - cm_e) < cm_c ? (cm_c/cm_a)*sqrt(1 - ((x - cm_x0 - cm_e)/cm_c)**2) : 0))\n",
+      num(n.reference->centre * 1e3), num(h.a * 1e3), num(h.p0 * 1e-6), num(st.f), num(z.c * 1e3), num(z.centre * 1e3));
+  const std::string term = fmt::format(", cm_q(x) with lines lw 2 dt 3 lc rgb '#000000' title 'Cattaneo–Mindlin, top "
+                                       "(c/a = {:.4g})'",
+                                       z.c / h.a);
+  return {defs, term};
+}
+
 std::string cycle_plot_script(const Scene& scene, const NormalResult& n, const CycleStage& st) {
   const CycleResult& c = st.result;
   std::string head = fmt::format(R"(# The load cycle. Re-run with: gnuplot cycle.gp
 set datafile separator ','
 set xlabel 'x (mm)'
 set grid
-set key outside right top
+set key below maxrows 3
 set xrange [{}:{}]
 )", n.grid.x_min * 1e3, n.grid.x_max * 1e3);
   std::string marks;
@@ -43,7 +78,8 @@ set xrange [{}:{}]
     marks = fmt::format("set object 1 rect from {},graph 0 to {},graph 1 back fc rgb '#eeeeee' fs solid noborder\n",
                         c.stick_zone->first * 1e3, c.stick_zone->second * 1e3);
   const double f = st.f;
-  std::string s = head + marks;
+  const auto [mindlin_defs, mindlin_term] = mindlin_traction(scene, n, st);
+  std::string s = head + marks + mindlin_defs;
   s += fmt::format("set title \"{}: shear traction at the four phases (Q/fP = {:.3g}, f = {:.3g}; {})\" noenhanced\n",
                    scene.name, st.Q_max / (f * scene.P), f, c.stick_zone ? "grey: stick zone" : "gross slip: no stick zone");
   s += "set ylabel 'shear traction q (MPa)'\n";
@@ -64,8 +100,8 @@ set xrange [{}:{}]
       "'' skip 1 using ($1*1e3):($3*1e-6) with lines lw 1.5 lc rgb '#d62728' title 'top (+{0})', "
       "'' skip 1 using ($1*1e3):($4*1e-6) with lines lw 1.5 lc rgb '#ff7f0e' title 'unloaded ({0} = 0)', "
       "'' skip 1 using ($1*1e3):($5*1e-6) with lines lw 1.5 lc rgb '#1f77b4' title 'bottom (-{0})', "
-      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({0} = 0)'\n",
-      scene.control == LoadControl::displacement ? "δ" : "Q");  // the phases of the controlled quantity
+      "'' skip 1 using ($1*1e3):($6*1e-6) with lines lw 1.5 dt 2 lc rgb '#2ca02c' title 'reloaded ({0} = 0)'{1}\n",
+      scene.control == LoadControl::displacement ? "δ" : "Q", mindlin_term);  // the phases of the controlled quantity
   const std::string traction_plot = s.substr(s.find("plot 'cycle.csv'"));
   std::string out = s.substr(0, s.find("plot 'cycle.csv'"));
   out += "set terminal svg size 1000,560 dynamic font 'sans,12'\nset output 'traction.svg'\n" + traction_plot;
@@ -92,13 +128,21 @@ std::string loop_csv(const CycleResult& c) {
   return s;
 }
 
-std::string loop_plot_script(const Scene& scene, const CycleStage& st) {
+// The loop's closed form where PHYSICS.md has one: its area, the energy Hertz dissipates per cycle without bulk
+// tension (engine/report.hpp).
+std::string loop_plot_script(const Scene& scene, const NormalResult& n, const CycleStage& st) {
   const CycleResult& c = st.result;
   const std::size_t n0 = c.first_loading.size();
+  const std::optional<Mindlin> m = mindlin(scene, n, st);
+  const std::string closed =
+      m && st.bulk_stress == 0.0
+          ? fmt::format(" (closed form, Hertz: {:.4g} J/m)",
+                        hertz_dissipated_energy(st.f, m->h.p0, m->h.a, m->z.c, scene.profile.R))
+          : std::string();
   return fmt::format(R"gp(# The fretting loop. Re-run with: gnuplot loop.gp
 set datafile separator ','
 set title "{0}: fretting loop, reference points {1:.4g} mm deep" noenhanced
-set label 1 "dissipated per cycle {3:.4g} J/m\nreference points at x = {2:.4g} mm" at graph 0.97, graph 0.06 right
+set label 1 "dissipated per cycle {3:.4g} J/m{4}\nreference points at x = {2:.4g} mm" at graph 0.97, graph 0.06 right
 set label 1 noenhanced
 set xlabel 'relative tangential displacement δ of the reference points (µm)'
 set ylabel 'tangential load Q (kN/m)'
@@ -109,7 +153,7 @@ set yzeroaxis lt -1 lw 0.5
 )gp",
                      scene.name, st.reference_depth * 1e3,
                      std::abs(st.reference_x) < 1e-9 * st.reference_depth ? 0.0 : st.reference_x * 1e3,
-                     c.dissipated_energy) +
+                     c.dissipated_energy, closed) +
          svg_and_png("loop",
                      fmt::format("plot 'loop.csv' skip 1 every ::0::{0} using ($4*1e6):($3*1e-3) with lines lw 1.5 "
                                  "dt 2 lc rgb '#888888' title 'first loading', '' skip 1 every ::{1} using "
@@ -266,7 +310,7 @@ void write_cycle(const Scene& scene, const NormalResult& normal, const CycleStag
   if (run_gnuplot(out.path(""), "cycle.gp"))
     written.plots.insert(written.plots.end(), {"traction.svg", "traction.png", "slip.svg", "slip.png"});
   if (!loop) return;
-  out.write("loop.gp", loop_plot_script(scene, cycle));
+  out.write("loop.gp", loop_plot_script(scene, normal, cycle));
   if (run_gnuplot(out.path(""), "loop.gp")) written.plots.insert(written.plots.end(), {"loop.svg", "loop.png"});
 }
 

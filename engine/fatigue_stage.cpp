@@ -93,19 +93,18 @@ std::string fatigue_plot_script(const Scene& scene, const NormalResult& normal, 
   std::string s = fmt::format(R"(# Fatigue measures (contact/fatigue_measures.hpp). Re-run with: gnuplot fatigue.gp
 set view map
 set pm3d map interpolate 0,0
-set palette rgbformulae 33,13,10
 set contour base
 set cntrparam levels 12
 unset clabel
 set xlabel 'x (mm)'
 set ylabel 'depth y (mm)'
-set cblabel 'SWT = σ_{{n,max}} Δε_n / 2 (MPa = MJ/m³)'
 set yrange [{}:0]
 set xrange [{}:{}]
 set cbrange [0:*]
 set size ratio -1
 unset key
 )", depth, x0, x1);
+  s += colour_map_settings("SWT = σ_{n,max} Δε_n / 2 (MPa = MJ/m³)");
   for (const auto& z : normal.zones)
     for (double x : {z.left.x, z.right.x})
       s += fmt::format("set arrow from {0},{1} to {0},0 nohead front dt 3 lc rgb '#ffffff'\n", x * 1e3, 0.25 * depth);
@@ -115,17 +114,17 @@ unset key
   double tx = -std::sin(theta), ty = std::cos(theta);
   if (ty < 0.0) tx = -tx, ty = -ty;
   const double px = m.max_x * 1e3, py = m.max_y * 1e3;
-  s += fmt::format("set arrow from {},{} to {},{} nohead front lw 3 lc rgb '#000000'\n", px, py, px + tx * length,
+  s += fmt::format("set arrow from {},{} to {},{} nohead front lw 3 lc rgb '#ff3030'\n", px, py, px + tx * length,
                    py + ty * length);
-  s += fmt::format("set label 'max {:.3g} MPa at x = {:.4g} mm, y = {:.3g} µm; critical plane (black) θ_{{crit}} = "
+  s += fmt::format("set label 'max {:.3g} MPa at x = {:.4g} mm, y = {:.3g} µm; critical plane (red) θ_{{crit}} = "
                    "{:.1f}°' at graph 0.02,0.06 front tc rgb '#ffffff'\n",
                    m.max.swt * 1e-6, px, m.max_y * 1e6, degrees(theta));
   s += fmt::format("set title \"{}: Smith–Watson–Topper on the critical plane over the cycle, {}\" noenhanced\n",
                    scene.name, cycles_text(f.last().cycles));
   s += png_only("swt_map",
                 "splot 'swt_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d notitle, "
-                "'' using ($1*1e3):($2*1e3):($3*1e-6) nosurface with lines lc rgb '#333333' notitle\n",
-                1000, 460);
+                "'' using ($1*1e3):($2*1e3):($3*1e-6) nosurface with lines lc rgb '#c8c8c8' notitle\n",
+                1000, map_height(m.x.back() - m.x.front(), m.y.back()));
   std::vector<const FatigueRecord*> ruiz;
   for (const FatigueRecord& rec : f.records)
     if (rec.ruiz) ruiz.push_back(&rec);

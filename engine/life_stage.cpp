@@ -364,13 +364,12 @@ std::string life_plot_script(const Scene& scene, const LifeStage& life) {
   }
   if (life.initiation && life.initiation->map_y.size() > 1) {
     const LifeInitiationResult& i = *life.initiation;
-    s += "reset\nset datafile separator ','\nset view map\nset pm3d map\nset palette cubehelix\n";
+    s += "reset\nset datafile separator ','\nset view map\nset pm3d map\n" + colour_map_settings("damage D (Miner)");
     s += fmt::format("set title \"{}: Miner's damage {} (red: the site, x = {:.4g} mm; black: the worn surface)\" noenhanced\n", scene.name,
                      i.cycles <= scene.life->cycles_max ? fmt::format("at initiation, N = {:.4g}", i.cycles)
                                                         : fmt::format("after {:.4g} cycles", scene.life->cycles_max),
                      i.x * 1e3);
-    s += fmt::format("set xlabel 'x (mm)'\nset ylabel 'depth below the unworn surface (µm)'\nset yrange [{}:0]\n"
-                     "set cblabel 'damage'\n",
+    s += fmt::format("set xlabel 'x (mm)'\nset ylabel 'depth below the unworn surface (µm)'\nset yrange [{}:0]\n",
                      i.map_y.back() * 1e6);
     // The worn surface then, over the removed layer (left blank: its material went with the wear debris).
     std::string surface;

@@ -41,6 +41,27 @@ std::string csv_number(double v) {
   return fmt::format("{:.10g}", v);
 }
 
+std::string viridis_palette() {
+  // matplotlib's viridis sampled at k/8, k = 0 ... 8.
+  static const char* stops[9] = {"#440154", "#472d7b", "#3b528b", "#2c728e", "#21918c",
+                                 "#28ae80", "#5ec962", "#addc30", "#fde725"};
+  std::string s = "set palette defined (";
+  for (int k = 0; k < 9; ++k) s += fmt::format("{}{} '{}'", k ? ", " : "", k, stops[k]);
+  return s + ")\n";
+}
+
+std::string colour_map_settings(const std::string& cb_label) {
+  return viridis_palette() + "set autoscale xfix\nset autoscale yfix\nset autoscale cbfix\n" +
+         fmt::format("set cblabel '{}'\n", cb_label);
+}
+
+int map_height(double span_x, double span_y, int width) {
+  // The plot area is the image less about 260 px of margins across (labels, colour bar) and 150 down (title, tics,
+  // label); with ratio −1 its height is its width times span_y/span_x.
+  const double area = double(width - 260) * span_y / span_x;
+  return std::clamp(int(std::lround(area)) + 150, 260, 1200);
+}
+
 // A colour ramp from dark blue to orange (matplotlib's plasma, up to 0.85): t in [0, 1].
 std::string ramp(double t) {
   static const int stops[5][3] = {{13, 8, 135}, {106, 0, 168}, {177, 42, 144}, {225, 100, 98}, {244, 150, 40}};

@@ -15,6 +15,16 @@ std::string png_only(const std::string& stem, const std::string& plot, int width
 // Runs gnuplot on `script` inside `dir`; false (and a note on stderr) when gnuplot is missing or fails.
 bool run_gnuplot(const std::filesystem::path& dir, const std::string& script_file);
 
+// The settings every colour map (pm3d map) shares: the viridis palette, perceptually uniform and legible in grey
+// and to the colour-blind (van der Walt and Smith 2015, matplotlib's default since 2.0), the axes cropped to the data
+// (no margin past the first and last grid points), and the colour bar's label (enhanced text).
+std::string colour_map_settings(const std::string& cb_label);
+// gnuplot's `set palette defined (...)` for viridis, 9 stops (matplotlib's table at 0, 1/8, ..., 1).
+std::string viridis_palette();
+// The PNG height (px) that fits a map of span_x by span_y (any one unit) drawn with `set size ratio -1` into a
+// `width`-px image without bands of white above and below it.
+int map_height(double span_x, double span_y, int width = 1000);
+
 // A colour along a ramp from t = 0 (first record) to 1 (last), as gnuplot's rgb '#rrggbb'.
 std::string ramp(double t);
 // A cycle count for a plot's key (enhanced text): "N = 1×10^{6}" and the like.

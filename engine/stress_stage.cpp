@@ -51,7 +51,6 @@ std::string stress_plot_script(const Scene& scene, const StressMap& m) {
   std::string s = fmt::format(R"(# Stress under the surface. Re-run with: gnuplot stress.gp
 set view map
 set pm3d map interpolate 0,0
-set palette rgbformulae 33,13,10
 set xlabel 'x (mm)'
 set ylabel 'depth y (mm)'
 set yrange [{}:0]
@@ -59,12 +58,16 @@ set xrange [{}:{}]
 set size ratio -1
 unset key
 )", m.y.back() * 1e3, m.x.front() * 1e3, m.x.back() * 1e3);
+  const int height = map_height(m.x.back() - m.x.front(), m.y.back());
+  s += colour_map_settings("von Mises stress (MPa)");
   s += fmt::format("set title \"{}: von Mises stress at the {} of the cycle (MPa), {}\" noenhanced\n", scene.name,
                    m.phase, cycles_text(m.cycles));
-  s += png_only("stress_von_mises", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($6*1e-6) with pm3d\n");
+  s += png_only("stress_von_mises", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($6*1e-6) with pm3d\n", 1000,
+                height);
+  s += "set cblabel 'σ_{xx} (MPa)'\n";
   s += fmt::format("set title \"{}: σxx at the {} of the cycle (MPa), {}\" noenhanced\n", scene.name, m.phase,
                    cycles_text(m.cycles));
-  s += png_only("stress_sxx", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d\n");
+  s += png_only("stress_sxx", "splot 'stress_map.dat' using ($1*1e3):($2*1e3):($3*1e-6) with pm3d\n", 1000, height);
   return s;
 }
 

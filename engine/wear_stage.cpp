@@ -194,12 +194,18 @@ set grid
     return v;
   }());
   s += fmt::format("set title \"{}: worn area against cycles\" noenhanced\n", scene.name);
-  s += "set key inside left top opaque box\nset ylabel 'worn area ∫ w dx (µm²)'\n";
-  if (area_top > 0.0) {
-    s += fmt::format("set yrange [0:{}]\n", area_top * 1e12);
+  // Log–log: the early growth (∝ N, at the unworn rate) and the approach to the limit, the curve flattening onto the
+  // asymptote, both in view (a linear cycle axis squeezes the growth into its first per cent).
+  double area_lo = area_top;
+  for (const WearRecord& rec : w.records)
+    if (rec.cycles > 0.0 && rec.worn_area > 0.0) area_lo = std::min(area_lo, 0.5 * rec.worn_area);
+  s += "set key inside right bottom opaque box\nset ylabel 'worn area ∫ w dx (µm²)'\n";
+  if (area_top > 0.0 && area_lo < area_top) {  // nothing worn yet: no log axis to draw it on
+    s += "set logscale y\nset format y '%h'\n";
+    s += fmt::format("set yrange [{}:{}]\n", area_lo * 1e12, area_top * 1e12);
     if (a.worn_area > 0.0)
-      s += fmt::format("set y2range [0:{}]\nset y2label 'fraction of the asymptote'\nset ytics nomirror\n"
-                       "set y2tics\n", area_top / a.worn_area);
+      s += fmt::format("set logscale y2\nset y2range [{}:{}]\nset y2label 'fraction of the asymptote'\n"
+                       "set ytics nomirror\nset y2tics\n", area_lo / a.worn_area, area_top / a.worn_area);
   }
   // Without an asymptote (displacement control) the dashed line is the initial rate c ∫ p s dx carried on: the
   // worn area of uniform wear at the rate of the unworn contact (Archard, for sliding: k P s N).

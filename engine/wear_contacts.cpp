@@ -139,6 +139,9 @@ std::vector<double> continued_over_gaps(std::span<const double> p, std::span<con
   return out;
 }
 
+// The energy's equivalent slip e / (f p_ref) is capped at this many times the slip travelled (header).
+constexpr double kEnergySlipCap = 2.0;
+
 IncrementalSlipOptions incremental_options(const Scene& scene, double beta) {
   IncrementalSlipOptions o;
   o.increments_per_cycle = scene.tangential->increments;
@@ -197,7 +200,9 @@ void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleR
   out.s.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
     if (!(ref.p[i] > 0.0)) continue;
-    out.s[i] = energy ? cycle_.energy_density[i] / (f * ref.p[i]) : cycle_.slip_travelled[i];
+    out.s[i] = energy ? std::min(cycle_.energy_density[i] / (f * ref.p[i]),
+                                 kEnergySlipCap * cycle_.slip_travelled[i])
+                      : cycle_.slip_travelled[i];
   }
   out.has_stick = cycle_.stick_zone.has_value();
   out.stick_left = out.stick_right = 0.0;

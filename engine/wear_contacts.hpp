@@ -148,6 +148,14 @@ class AnalogyContactResponse : public WearContact {
 //    whose contact covers every cell that touches during the cycle, so no energy is left out; CycleResponse::p and
 //    the records' pressure are that pressure, and the contact-implicit step solves under that load. β ≠ 0 without
 //    a history: p_ref is the uncoupled pressure under P, on whose contact the coupled cycle dissipates.
+//    Where p_ref is small against the pressure the cell carries while it slips in the cycle (e = f p̄ Σ|Δw|, p̄ that
+//    pressure's slip-weighted mean), e / (f p_ref) = (p̄/p_ref) Σ|Δw| grows without bound: at the edges of the worn
+//    zones near the limit, where the coupled cycle still loads cells that the pressure under P has left. The ratio
+//    of two small pressures there swings from step to step, and the stepper's error estimate with it (a dissimilar
+//    Hertz run at 512 cells cut its jump to 1e-307 cycles). So s is capped at kEnergySlipCap = 2 times the slip
+//    travelled: exact (c p_ref s = c e / f) wherever p_ref ≥ p̄/2, and below that the wear rate is c p_ref · 2Σ|Δw|,
+//    less than the energy's, falling to zero with p_ref. Such cells wear as the uncoupled pressure under P says;
+//    the limit the run tends to is then that of the pressure under P (PERFORMANCE.md, "Dissimilar bodies").
 class IncrementalContactResponse : public WearContact {
  public:
   // The cycle stage's load (its plan) and datum.

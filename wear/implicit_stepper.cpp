@@ -66,6 +66,12 @@ controlled_step_result ImplicitWearStepper::try_step_impl(ContactResponse& conta
   stats_.last_error = err;
   if (!(err <= 1.0)) {
     ++stats_.rejected;
+    if (dN < kMinJump)
+      throw ConvergenceError(fmt::format(
+          "wear: the implicit stepper's error estimate does not fall with its jump (error {:.3g} times the tolerance "
+          "{:.3g} at a jump of {:.3g} cycles, at cycle {:.6g}): the contact's response is not smooth enough in the "
+          "worn profile here; use effects.wear.stepper \"cycle_by_cycle\", or a looser tolerance",
+          err, tolerance_, dN, N));
     dN *= std::clamp(0.9 / std::sqrt(err), 0.2, 0.9);
     return controlled_step_result::fail;
   }

@@ -58,6 +58,10 @@
 // the asymptote a large jump gives d = ΔN c s up to 10^5 times the kernel's diagonal on the worn cells, and the
 // constrained CG can stall there (4096 cells, hertz_wear), while a jump a few times smaller converges in a thousand
 // iterations. Below one cycle there is nothing left to cut: ImplicitSolveFailure is thrown.
+//
+// An error estimate that stays above the tolerance as the jump shrinks (a response that is not smooth in w, so that
+// the one step and the two half steps differ by a fixed fraction whatever ΔN) would cut ΔN toward zero for ever: a
+// rejection at a jump below kMinJump cycles throws ConvergenceError with the error, the jump and the cycle instead.
 #pragma once
 
 #include <algorithm>
@@ -94,6 +98,9 @@ struct ImplicitStepperState {
   ImplicitStepperStats stats;
   std::vector<double> p_full, p_half;
 };
+
+// A jump below this is no step of a wear run (cycles): the error control has failed (above).
+inline constexpr double kMinJump = 1e-6;
 
 class ImplicitWearStepper {
  public:

@@ -96,3 +96,51 @@ TEST_CASE("below one cycle the implicit stepper gives up, the engine names the s
   CHECK(dN == 1.0);
   CHECK_THROWS_AS(stepper.try_step(wear::ResponseRef{&contact}, w, N, dN), wear::ImplicitSolveFailure);
 }
+
+namespace {
+
+// The real contact with a slip that jumps threefold as soon as anything has worn: the one step (slip lagged at
+// w = 0) and the two half steps (the second at the threefold slip) then differ by a fixed fraction of the wear
+// at any jump, as a response that is not smooth in w makes them.
+class RoughResponse : public wear::ContactResponse {
+ public:
+  explicit RoughResponse(AnalogyContactResponse& real) : real_(real) {}
+  int cells() const override { return real_.cells(); }
+  double cell_width() const override { return real_.cell_width(); }
+  void respond(std::span<const double> w, wear::CycleResponse& out) override {
+    real_.respond(w, out);
+    const double factor = *std::max_element(w.begin(), w.end()) > 0.0 ? 3.0 : 1.0;
+    for (double& s : out.s) s *= factor;
+    for (double& s : out.s_touching) s *= factor;
+  }
+  bool implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) override {
+    return real_.implicit_pressure(w, d, p);
+  }
+
+ private:
+  AnalogyContactResponse& real_;
+};
+
+}  // namespace
+
+TEST_CASE("an error estimate that does not fall with the jump stops the stepper with a ConvergenceError") {
+  const Scene s = test::hertz_wear(1e5, 0.5, 1e4, 256);
+  const Model m = make_model(s);
+  AnalogyContactResponse real(s, m, cyclic_load(s, m.pair));
+  RoughResponse contact(real);
+  wear::ImplicitWearStepper stepper(1e-12, 1e-3);
+  std::vector<double> w(m.grid.n, 0.0);
+  double N = 0.0, dN = 10.0;
+  int tries = 0;
+  using boost::numeric::odeint::controlled_step_result;
+  auto step_until_stopped = [&] {
+    while (tries < 10000) {
+      ++tries;
+      stepper.try_step(wear::ResponseRef{&contact}, w, N, dN);
+    }
+  };
+  CHECK_THROWS_AS(step_until_stopped(), ConvergenceError);
+  CHECK(dN < wear::kMinJump);
+  CHECK(tries < 100);  // each rejection cuts the jump by at least 0.9: from 10 to 1e-6 in at most 153 ...
+  CHECK(N == 0.0);     // ... and by 0.2 at an error this large: in a dozen
+}

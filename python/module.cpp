@@ -36,17 +36,29 @@ PyObject* g_scene_error = nullptr;
 PyObject* g_convergence_error = nullptr;
 PyObject* g_warning = nullptr;
 
+// Text from the engine as str. A problem may quote the scene's own bytes, which need not be UTF-8: those are kept as
+// Python keeps undecodable bytes of file names (surrogateescape).
+py::str text(const std::string& s) {
+  return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(s.data(), py::ssize_t(s.size()), "surrogateescape"));
+}
+
+py::list texts(const std::vector<std::string>& lines) {
+  py::list list;
+  for (const auto& line : lines) list.append(text(line));
+  return list;
+}
+
 [[noreturn]] void raise_scene_error(const std::vector<std::string>& problems) {
   std::string message = "the scene is invalid:";
   for (const auto& p : problems) message += "\n  " + p;
-  py::object error = py::reinterpret_borrow<py::object>(g_scene_error)(message);
-  error.attr("problems") = py::cast(problems);
+  py::object error = py::reinterpret_borrow<py::object>(g_scene_error)(text(message));
+  error.attr("problems") = texts(problems);
   PyErr_SetObject(g_scene_error, error.ptr());
   throw py::error_already_set();
 }
 
 [[noreturn]] void raise_convergence_error(const std::string& message) {
-  PyErr_SetString(g_convergence_error, message.c_str());
+  PyErr_SetObject(g_convergence_error, text(message).ptr());
   throw py::error_already_set();
 }
 
@@ -200,14 +212,15 @@ py::list validate(py::handle scene_arg, py::handle output_arg) {
     if (!e.matches(g_scene_error)) throw;
     return e.value().attr("problems");
   }
-  return py::cast(problems);
+  return texts(problems);
 }
 
 py::object defaults(const std::optional<std::string>& effect) {
   try {
     return to_python(default_scene_json(effect.value_or("")));
   } catch (const InputError& e) {
-    throw py::value_error(e.what());
+    PyErr_SetObject(PyExc_ValueError, text(e.what()).ptr());
+    throw py::error_already_set();
   }
 }
 

@@ -392,7 +392,12 @@ One attribute per CSV file, None when the run does not produce it:
         name.c_str(), [key](const Result& r) { return r.table(key); }, line.c_str());
   }
 
-  m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), kRunDoc);
-  m.def("validate", &validate, py::arg("scene"), py::arg("output") = py::none(), kValidateDoc);
-  m.def("defaults", &defaults, py::arg("effect") = py::none(), kDefaultsDoc);
+  {
+    // Each docstring opens with its own signature, in the types a caller gives (pybind11's would say "handle").
+    py::options options;
+    options.disable_function_signatures();
+    m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), kRunDoc);
+    m.def("validate", &validate, py::arg("scene"), py::arg("output") = py::none(), kValidateDoc);
+    m.def("defaults", &defaults, py::arg("effect") = py::none(), kDefaultsDoc);
+  }
 }

@@ -54,7 +54,7 @@ def test_other_threads_run_while_it_solves():
     running.clear()
     thread.join()
     # The solve (timings.total, some 0.25 s) ends just before the run returns, after the checks before solving, and
-    # the middle half of it lies well inside it: some 25 ticks of 5 ms when the solve lets the thread run, none or
+    # the middle half of it lies well inside it: some 25 ticks of 5 ms when the solve lets the thread run,
     # a few at most when it holds the GIL (measured: 3).
     solve = result.summary["timings"]["total"]
     assert solve > 0.1 and end - start > solve

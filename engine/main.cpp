@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "engine/api.hpp"
 #include "engine/checkpoint.hpp"
 #include "engine/convergence.hpp"
 #include "engine/deferred_signals.hpp"
@@ -299,8 +300,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
   } catch (const ConvergenceError& e) {
     progress.finish();
     const DeferredStopSignals hold;
-    out.write_json("summary.json", {{"scene", scene.name}, {"version", kVersion}, {"status", "not_converged"},
-                                    {"message", e.what()}});
+    out.write_json("summary.json", not_converged_summary(scene, e.what()));
     out.commit();
     throw;
   } catch (const InputError&) {

@@ -1,0 +1,403 @@
+// The Python module fretwear (docs/PYTHON.md): the command line's run, validate and defaults on scenes held as dicts,
+// results in memory with numpy arrays, files only where asked.
+#include <chrono>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "engine/api.hpp"
+#include "engine/deferred_signals.hpp"
+#include "engine/folder.hpp"
+#include "engine/output.hpp"
+#include "engine/preflight.hpp"
+#include "engine/scene.hpp"
+#include "engine/simulation.hpp"
+#include "engine/version.hpp"
+#include "engine/wear_stage.hpp"
+#include "python/convert.hpp"
+#include "python/tables.hpp"
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace fretwear::python {
+namespace {
+
+// The module's exceptions and warning category, made at import.
+PyObject* g_scene_error = nullptr;
+PyObject* g_convergence_error = nullptr;
+PyObject* g_warning = nullptr;
+
+// Text from the engine as str. A problem may quote the scene's own bytes, which need not be UTF-8: those are kept as
+// Python keeps undecodable bytes of file names (surrogateescape).
+py::str text(const std::string& s) {
+  return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(s.data(), py::ssize_t(s.size()), "surrogateescape"));
+}
+
+py::list texts(const std::vector<std::string>& lines) {
+  py::list list;
+  for (const auto& line : lines) list.append(text(line));
+  return list;
+}
+
+[[noreturn]] void raise_scene_error(const std::vector<std::string>& problems) {
+  std::string message = "the scene is invalid:";
+  for (const auto& p : problems) message += "\n  " + p;
+  py::object error = py::reinterpret_borrow<py::object>(g_scene_error)(text(message));
+  error.attr("problems") = texts(problems);
+  PyErr_SetObject(g_scene_error, error.ptr());
+  throw py::error_already_set();
+}
+
+[[noreturn]] void raise_convergence_error(const std::string& message) {
+  PyErr_SetObject(g_convergence_error, text(message).ptr());
+  throw py::error_already_set();
+}
+
+// A scene argument: a dict (its name "scene" unless it gives one), or the path of a scene file (str or os.PathLike)
+// read as the command line reads it. scene_file: where it was read, for the output folder's rules.
+struct SceneArgument {
+  Scene scene;
+  fs::path scene_file;
+};
+
+SceneArgument scene_argument(py::handle arg) {
+  const py::module_ os = py::module_::import("os");
+  try {
+    if (py::isinstance<py::str>(arg) || py::isinstance(arg, os.attr("PathLike"))) {
+      const fs::path path = py::str(os.attr("fspath")(arg)).cast<std::string>();
+      return {load_scene(path), path};
+    }
+    if (!py::isinstance<py::dict>(arg))
+      raise_scene_error({fmt::format("(top): the scene is a {}; give a dict (or the path of a scene file)",
+                                     std::string(py::str(py::type::handle_of(arg).attr("__name__"))))});
+    std::vector<std::string> problems;
+    const json j = to_json(arg, problems);
+    if (!problems.empty()) raise_scene_error(problems);
+    return {parse_scene(j), {}};
+  } catch (const SceneError& e) {
+    raise_scene_error(e.problems());
+  }
+}
+
+// The folder an `output` argument names; scene.output_dir is replaced by it.
+std::optional<fs::path> output_argument(py::handle output) {
+  if (output.is_none()) return std::nullopt;
+  return fs::path(py::str(py::module_::import("os").attr("fspath")(output)).cast<std::string>());
+}
+
+void warn(const std::vector<Warning>& warnings) {
+  for (const Warning& w : warnings)
+    if (PyErr_WarnEx(g_warning, (w.code + ": " + w.message).c_str(), 2) < 0) throw py::error_already_set();
+}
+
+// What the checks before solving find: every problem, as the command line's preflight.
+std::vector<std::string> problems_before_solving(const Scene& scene, const fs::path& scene_file, bool output,
+                                                 Preflight* checked) {
+  std::vector<std::string> problems;
+  py::gil_scoped_release release;
+  if (output) problems = output_dir_problems(scene, scene_file, OutputCommand::run);
+  const std::vector<std::string> physics = physics_problems(scene, checked);
+  problems.insert(problems.end(), physics.begin(), physics.end());
+  return problems;
+}
+
+class Result {
+ public:
+  py::object summary, scene, output;
+  std::map<std::string, py::object> tables;
+  py::object table(const std::string& name) const {
+    const auto it = tables.find(name);
+    return it == tables.end() ? py::none() : it->second;
+  }
+};
+
+// The wear stage's stop hook: at each step boundary, Python's pending signals are run (with the GIL taken for that
+// moment). A handler that raises (Ctrl-C's KeyboardInterrupt) stops the run there; the exception is kept and raised
+// once the run has returned.
+class SignalCheck {
+ public:
+  bool operator()(const WearProgress&) {
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() == 0) return false;
+    *pending_ = py::error_already_set();
+    return true;
+  }
+  std::shared_ptr<std::optional<py::error_already_set>> pending_ =
+      std::make_shared<std::optional<py::error_already_set>>();
+};
+
+Result run(py::handle scene_arg, py::handle output_arg) {
+  SceneArgument arg = scene_argument(scene_arg);
+  Scene& scene = arg.scene;
+  const std::optional<fs::path> output = output_argument(output_arg);
+  if (output) scene.output_dir = *output;
+  Preflight checked;
+  if (auto problems = problems_before_solving(scene, arg.scene_file, output.has_value(), &checked); !problems.empty())
+    raise_scene_error(problems);
+  warn(checked.warnings);
+
+  SignalCheck check;
+  WearControl control;
+  control.stop_requested = check;
+  RunResult result;
+  json summary;
+  std::string failure;  // a ConvergenceError's or an InputError's message, raised with the GIL held
+  bool converged = true;
+  {
+    py::gil_scoped_release release;
+    try {
+      result = Simulation(scene).run(&control);
+      if (!check.pending_->has_value()) {
+        result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());
+        if (output) {
+          OutputFolder out(scene.output_dir, OutputCommand::run);
+          const DeferredStopSignals hold;  // the results are written whole, or not at all
+          summary = write_results(scene, result, out);
+          out.commit();
+        } else {
+          summary = make_summary(scene, result);
+          summary["plots"] = json::array();  // none drawn
+        }
+      }
+    } catch (const ConvergenceError& e) {
+      converged = false;
+      failure = e.what();
+      if (output) {
+        OutputFolder out(scene.output_dir, OutputCommand::run);
+        const DeferredStopSignals hold;
+        out.write_json("summary.json", not_converged_summary(scene, failure));
+        out.commit();
+      }
+    } catch (const InputError& e) {  // found while solving: a worn contact grown to the window's end
+      failure = e.what();
+    }
+  }
+  if (check.pending_->has_value()) {
+    (*check.pending_)->restore();
+    throw py::error_already_set();
+  }
+  if (!converged) raise_convergence_error(failure);
+  if (!failure.empty()) raise_scene_error({failure});
+  // The preflight's warnings were given before the run.
+  warn(std::vector<Warning>(result.warnings.begin() + std::ptrdiff_t(checked.warnings.size()), result.warnings.end()));
+
+  Result r;
+  r.summary = to_python(summary);
+  Scene resolved = scene;  // as write_results resolves it: the window and the datum as used
+  resolved.window = std::pair(result.normal.grid.x_min, result.normal.grid.x_max);
+  if (result.cycle) resolved.reference_depth = result.cycle->reference_depth;
+  r.scene = to_python(resolved.to_json());
+  r.output = output ? py::object(py::module_::import("pathlib").attr("Path")(output->string())) : py::none();
+  for (auto& [name, table] : result_tables(scene, result)) r.tables[name] = py::cast(std::move(table));
+  return r;
+}
+
+py::list validate(py::handle scene_arg, py::handle output_arg) {
+  std::vector<std::string> problems;
+  try {
+    SceneArgument arg = scene_argument(scene_arg);
+    const std::optional<fs::path> output = output_argument(output_arg);
+    if (output) arg.scene.output_dir = *output;
+    problems = problems_before_solving(arg.scene, arg.scene_file, output.has_value(), nullptr);
+  } catch (py::error_already_set& e) {
+    if (!e.matches(g_scene_error)) throw;
+    return e.value().attr("problems");
+  }
+  return texts(problems);
+}
+
+py::object defaults(const std::optional<std::string>& effect) {
+  try {
+    return to_python(default_scene_json(effect.value_or("")));
+  } catch (const InputError& e) {
+    PyErr_SetObject(PyExc_ValueError, text(e.what()).ptr());
+    throw py::error_already_set();
+  }
+}
+
+const char* kRunDoc = R"doc(run(scene, output=None) -> Result
+
+Run a scene: the normal contact, then each effect it asks for (the load cycle, wear, the stresses with the fatigue
+measures, the crack's stress intensity factors, the life), all in memory, as `fretwear run` does.
+
+scene   a dict in the scene format (docs/SCENES.md; fretwear.defaults() gives every key), or the path of a scene
+        file. Lengths in m, loads per unit length in N/m, stresses and moduli in Pa, cycles as counts.
+output  None (the default): nothing is written, and the scene's output.dir is ignored. A folder (str or
+        pathlib.Path): the results are also written there exactly as the command line writes them (summary.json,
+        the CSV files, the plots, index.html, scene.resolved.json), under the same rules for output folders.
+
+Returns a Result: `summary` (the dict of summary.json: SI units, every number the command line reports), `scene`
+(the resolved scene) and one table of numpy arrays per CSV file, e.g. result.contact.x (m), result.contact.p (Pa);
+a table the run does not produce is None. print(result.contact) lists its columns with units.
+
+Raises SceneError (its `problems` each name a JSON path) for an invalid scene, with nothing computed or written;
+ConvergenceError where a solver did not converge (the command line's exit status 3); KeyboardInterrupt when Ctrl-C
+stops a wear run (at its next step; nothing is written). The solve runs without the GIL. Warnings about results the
+grid cannot resolve are issued as fretwear.FretwearWarning (and listed in summary["warnings"]).
+
+Example:
+    import fretwear
+    result = fretwear.run(fretwear.defaults("wear"))
+    print(result.summary["wear"]["worn_area"], result.wear_history.worn_area[-1])   # m^2
+)doc";
+
+const char* kValidateDoc = R"doc(validate(scene, output=None) -> list[str]
+
+Every problem of a scene that fretwear.run would refuse, each "json.path: what is wrong; what is allowed" (the
+path first, "(top)" for the scene itself), or [] for a valid scene. Makes every check run makes before solving: the
+format, the ranges, the physics that shows before solving (the contact strain, the cycle's route, a wear run's
+estimated time, refused past a day) and, when `output` names a folder, the output folder's rules. Writes nothing.
+)doc";
+
+const char* kDefaultsDoc = R"doc(defaults(effect=None) -> dict
+
+The complete default scene (PHYSICS.md's Hertz contact: a cylinder of radius 0.05 m on a flat, steel on steel)
+with every effect and every key written out, as `fretwear defaults` prints it; or with one effect and the load
+cycle it needs: effect is "normal", "tangential", "wear", "stress", "crack" or "life". Units as in docs/SCENES.md
+(m, N/m, Pa). Raises ValueError for another effect.
+)doc";
+
+}  // namespace
+}  // namespace fretwear::python
+
+PYBIND11_MODULE(fretwear, m) {
+  using namespace fretwear::python;
+  m.doc() = R"doc(fretwear: fretting in plane elastic contacts, from one scene (docs/PYTHON.md).
+
+    import fretwear
+    result = fretwear.run(fretwear.defaults("wear"))      # a dict in, nothing written
+    print(result.summary["contact"]["p_max"], result.contact.p.max())   # Pa
+
+run(scene, output=None) runs a scene in memory; validate(scene) lists its problems; defaults(effect=None) gives the
+complete default scene. Errors: SceneError (with .problems), ConvergenceError. Units are SI throughout.)doc";
+  m.attr("__version__") = fretwear::kVersion;
+
+  g_scene_error = PyErr_NewExceptionWithDoc(
+      "fretwear.SceneError",
+      "An invalid scene: nothing was computed or written. `problems` lists every problem, each "
+      "\"json.path: what is wrong; what is allowed\" (the command line's exit status 2).",
+      PyExc_ValueError, nullptr);
+  g_convergence_error = PyErr_NewExceptionWithDoc(
+      "fretwear.ConvergenceError",
+      "A solver stopped short of its tolerance; the message names the stage, the cycle and the residual (the command "
+      "line's exit status 3). With `output`, summary.json says \"status\": \"not_converged\".",
+      PyExc_RuntimeError, nullptr);
+  g_warning = PyErr_NewExceptionWithDoc(
+      "fretwear.FretwearWarning",
+      "A result the grid cannot resolve, a closed form missed, a long run: \"code: message\" (docs/SCENES.md, "
+      "\"Warnings\"); summary[\"warnings\"] lists them too.",
+      PyExc_UserWarning, nullptr);
+  m.attr("SceneError") = py::handle(g_scene_error);
+  m.attr("ConvergenceError") = py::handle(g_convergence_error);
+  m.attr("FretwearWarning") = py::handle(g_warning);
+
+  py::class_<Table>(m, "Table", R"doc(One CSV file's fields as numpy arrays: table.x, table["x"]; the same rows and
+columns as the file, each column named by its header without the unit ("p_Pa" is p) and in that unit (SI; the
+critical plane's angle in degrees). An empty CSV value is NaN. print(table) lists the columns with their units;
+table.units maps each to its unit; pandas.DataFrame(table.to_dict()) makes a data frame.)doc")
+      .def("__getattr__",
+           [](const Table& t, const std::string& name) -> py::object {
+             for (const Column& c : t.columns())
+               if (c.name == name) return c.values;
+             throw py::attribute_error(fmt::format("{} has no column \"{}\"", t.file(), name));
+           })
+      .def("__getitem__", [](const Table& t, const std::string& name) { return t.column(name).values; })
+      .def("__contains__",
+           [](const Table& t, const std::string& name) {
+             for (const Column& c : t.columns())
+               if (c.name == name) return true;
+             return false;
+           })
+      .def("__len__", &Table::rows, "the number of rows")
+      .def("__dir__",
+           [](const Table& t) {
+             std::vector<std::string> names{"columns", "file", "keys", "rows", "to_dict", "units"};
+             for (const Column& c : t.columns()) names.push_back(c.name);
+             return names;
+           })
+      .def("keys",
+           [](const Table& t) {
+             std::vector<std::string> names;
+             for (const Column& c : t.columns()) names.push_back(c.name);
+             return names;
+           },
+           "the column names, in the CSV's order")
+      .def_property_readonly(
+          "columns",
+          [](const Table& t) {
+            std::vector<std::string> names;
+            for (const Column& c : t.columns()) names.push_back(c.name);
+            return names;
+          },
+          "the column names, in the CSV's order")
+      .def_property_readonly(
+          "units",
+          [](const Table& t) {
+            py::dict d;
+            for (const Column& c : t.columns()) d[py::str(c.name)] = c.unit;
+            return d;
+          },
+          "each column's unit: \"m\", \"Pa\", \"N/m\", \"1\" for a count or a pure number, \"\" for a label")
+      .def_property_readonly("rows", &Table::rows, "the number of rows")
+      .def_property_readonly("file", &Table::file, "the CSV file the command line writes it to")
+      .def("to_dict",
+           [](const Table& t) {
+             py::dict d;
+             for (const Column& c : t.columns()) d[py::str(c.name)] = c.values;
+             return d;
+           },
+           "{column: numpy array}, in the CSV's order (pandas.DataFrame(table.to_dict()))")
+      .def("__repr__", &Table::describe);
+
+  std::string result_doc = R"doc(What fretwear.run returns.
+
+summary  the dict of summary.json (SI units; "plots" is empty unless run wrote them into `output`)
+scene    the resolved scene (scene.resolved.json): every default filled in, the window as used
+output   the folder written (pathlib.Path), or None
+tables   {name: Table} of the tables below that the run produced
+
+One attribute per CSV file, None when the run does not produce it:
+)doc";
+  for (const auto& [name, line] : table_names()) result_doc += fmt::format("  {:<15}{}\n", name, line);
+  auto result = py::class_<Result>(m, "Result", result_doc.c_str())
+                    .def_readonly("summary", &Result::summary, "the dict of summary.json (SI units)")
+                    .def_readonly("scene", &Result::scene, "the resolved scene, every default filled in")
+                    .def_readonly("output", &Result::output, "the folder written (pathlib.Path), or None")
+                    .def_property_readonly(
+                        "tables",
+                        [](const Result& r) {
+                          py::dict d;
+                          for (const auto& [name, t] : r.tables) d[py::str(name)] = t;
+                          return d;
+                        },
+                        "{name: Table} of the tables the run produced")
+                    .def("__repr__", [](const Result& r) {
+                      std::string names;
+                      for (const auto& [name, t] : r.tables) names += (names.empty() ? "" : ", ") + name;
+                      return fmt::format("<fretwear.Result of scene \"{}\": {}>",
+                                         std::string(py::str(r.summary["scene"])), names);
+                    });
+  for (const auto& [name, line] : table_names()) {
+    const std::string key = name;
+    result.def_property_readonly(
+        name.c_str(), [key](const Result& r) { return r.table(key); }, line.c_str());
+  }
+
+  {
+    // Each docstring opens with its own signature, in the types a caller gives (pybind11's would say "handle").
+    py::options options;
+    options.disable_function_signatures();
+    m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), kRunDoc);
+    m.def("validate", &validate, py::arg("scene"), py::arg("output") = py::none(), kValidateDoc);
+    m.def("defaults", &defaults, py::arg("effect") = py::none(), kDefaultsDoc);
+  }
+}

@@ -1,0 +1,139 @@
+"""The module's interface: errors that name their JSON paths, nothing written without `output`, the folder written
+with it as the command line writes it, defaults and the version as the command line gives them, documented units."""
+import json
+import os
+
+import numpy
+import pytest
+
+import fretwear
+from conftest import SOURCE_DIR, cli, cli_run, example, without_timings
+
+
+def files_under(folder):
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+
+
+def test_bad_scenes_raise_scene_error_naming_every_path(in_empty_folder):
+    scene = example("hertz_wear")
+    scene["profile"]["R"] = -1.0
+    scene["load"]["Q"]["ratio"] = "half"
+    scene["grid"]["celss"] = 512
+    with pytest.raises(fretwear.SceneError) as caught:
+        fretwear.run(scene)
+    problems = caught.value.problems
+    for path in ("profile.R", "load.Q.ratio", "grid.celss"):
+        assert any(p.startswith(path + ":") for p in problems), (path, problems)
+    assert isinstance(caught.value, ValueError)
+    assert fretwear.validate(scene) == problems
+    assert files_under(in_empty_folder) == []
+
+
+def test_validate_finds_every_problem_the_command_line_finds(in_empty_folder):
+    bad_scenes = sorted((SOURCE_DIR / "tests" / "bad_scenes").glob("*.json"))
+    assert bad_scenes
+    for bad in bad_scenes:
+        status, _, err = cli("validate", bad)
+        assert status == 2, bad.name
+        theirs = [line[2:] for line in err.splitlines() if line.startswith("  ")]
+        assert fretwear.validate(bad) == theirs, bad.name
+    assert files_under(in_empty_folder) == []
+
+
+def test_values_that_are_not_json_are_problems_with_their_paths():
+    scene = example("hertz_normal")
+    scene["load"]["P"] = object()
+    scene["grid"][3] = 1
+    problems = fretwear.validate(scene)
+    assert any(p.startswith("load.P: a object is not a JSON value") for p in problems), problems
+    assert any(p.startswith("grid: the key 3 is a int") for p in problems), problems
+    scene = example("hertz_normal", **{"load.P": numpy.float64(1e5), "grid.cells": numpy.int64(256)})
+    assert fretwear.validate(scene) == []
+    assert fretwear.validate([1, 2]) == ["(top): the scene is a list; give a dict (or the path of a scene file)"]
+
+
+def test_the_physics_checks_before_solving_are_the_command_lines():
+    scene = example("hertz_normal", **{"load.P": 1e11})  # a contact strain far beyond linear elasticity
+    problems = fretwear.validate(scene)
+    assert len(problems) == 1 and problems[0].startswith("load.P: the mean contact pressure")
+    with pytest.raises(fretwear.SceneError):
+        fretwear.run(scene)
+
+
+def test_nothing_is_written_without_output(in_empty_folder):
+    scene = example("hertz_wear", **{"output.dir": str(in_empty_folder / "would_be_here")})
+    result = fretwear.run(scene)
+    assert result.output is None
+    assert result.summary["plots"] == []
+    assert files_under(in_empty_folder) == []
+
+
+def test_with_output_the_folder_is_what_the_command_line_writes(tmp_path):
+    scene = example("hertz_wear")
+    result = fretwear.run(scene, output=tmp_path / "py")
+    assert result.output == tmp_path / "py"
+    cli_folder = cli_run(scene, tmp_path)
+    assert files_under(tmp_path / "py") == files_under(cli_folder)
+    for csv in cli_folder.glob("*.csv"):
+        assert (tmp_path / "py" / csv.name).read_bytes() == csv.read_bytes(), csv.name
+    written = json.loads((tmp_path / "py" / "summary.json").read_text())
+    assert without_timings(written) == without_timings(result.summary)
+    assert without_timings(written) == without_timings(json.loads((cli_folder / "summary.json").read_text()))
+    assert result.summary["plots"] and os.path.exists(tmp_path / "py" / ".fretwear")
+
+
+def test_output_follows_the_command_lines_folder_rules(in_empty_folder):
+    (in_empty_folder / "mine").mkdir()
+    (in_empty_folder / "mine" / "thesis.tex").write_text("keep me")
+    scene = example("hertz_normal")
+    with pytest.raises(fretwear.SceneError) as caught:
+        fretwear.run(scene, output="mine")
+    assert caught.value.problems[0].startswith("output.dir")
+    assert fretwear.validate(scene, output="mine") == caught.value.problems
+    assert files_under(in_empty_folder) == ["mine", "mine/thesis.tex"]
+
+
+def test_arrays_have_the_grids_length_and_si_units():
+    result = fretwear.run(example("hertz_cycle", **{"grid.cells": 512}))
+    cells = result.summary["grid"]["cells"]
+    assert cells == 512
+    for table in (result.contact, result.cycle):
+        assert len(table) == cells
+        for name in table.columns:
+            assert table[name].shape == (cells,) and table[name].dtype == numpy.float64
+    # SI: the cell centres span the window in m, the peak is summary.json's p_max in Pa, the load balances P (N/m).
+    h = result.summary["grid"]["h"]
+    window = result.summary["grid"]["window"]
+    numpy.testing.assert_allclose(result.contact.x[[0, -1]], [window[0] + h / 2, window[1] - h / 2], rtol=1e-12)
+    assert result.contact.p.max() == result.summary["contact"]["p_max"]
+    P = result.scene["load"]["P"]
+    assert abs(result.contact.p.sum() * h - P) < 1e-6 * P
+    assert result.contact.units["x"] == "m" and result.contact.units["p"] == "Pa"
+    assert result.cycle.units["energy_density"] == "J/m^2"
+    assert result.wear_history is None and result.stress is None
+
+
+def test_defaults_and_version_are_the_command_lines():
+    _, out, _ = cli("defaults")
+    assert fretwear.defaults() == json.loads(out)
+    _, out, _ = cli("defaults", "--effect", "crack")
+    assert fretwear.defaults("crack") == json.loads(out)
+    with pytest.raises(ValueError):
+        fretwear.defaults("nothing")
+    _, out, _ = cli("--version")
+    assert out.split() == ["fretwear", fretwear.__version__]
+
+
+def test_a_scene_file_is_read_as_the_command_line_reads_it(tmp_path):
+    result = fretwear.run(SOURCE_DIR / "examples" / "hertz_normal.json")
+    assert result.summary["scene"] == "hertz_normal"
+
+
+def test_help_names_the_units():
+    for text in (fretwear.run.__doc__, fretwear.Result.__doc__, fretwear.Table.__doc__):
+        assert " m" in text and "Pa" in text
+    assert "SceneError" in fretwear.run.__doc__ and "output" in fretwear.run.__doc__
+    assert "problems" in fretwear.SceneError.__doc__
+    assert "json.path" in fretwear.validate.__doc__
+    assert "m^2" in fretwear.Result.wear_history.__doc__
+    assert "Pa" in repr(fretwear.run(example("hertz_normal")).contact)

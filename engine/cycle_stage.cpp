@@ -183,6 +183,13 @@ void analogy_delta_max(const Model& model, const NormalResult& normal, const Cyc
 
 }  // namespace
 
+std::optional<closed_form::StickZone> mindlin_stick_zone(const Scene& scene, const NormalResult& n,
+                                                         const CycleStage& cycle) {
+  const std::optional<Mindlin> m = mindlin(scene, n, cycle);
+  if (!m) return std::nullopt;
+  return m->z;
+}
+
 CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal) {
   CycleStage stage;
   stage.plan = plan;

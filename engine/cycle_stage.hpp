@@ -2,11 +2,13 @@
 // contact/incremental_slip.hpp, the incremental route), with the route that ran and why, and the displacement datum.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "contact/closed_form.hpp"
 #include "contact/tangential_solver.hpp"
 #include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
@@ -51,6 +53,11 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResul
 // without one), on the pressure p: the bottom is the top reversed, as the steady cycle is antisymmetric (exactly, so
 // that both edges of a symmetric contact tie); q_top empty or null (gross slip) gives q = ±f p. What each wear record
 // holds.
+// The Cattaneo–Mindlin stick zone of the unworn cycle where PHYSICS.md has it (Hertz under force control, similar
+// bodies, one steady partial-slip cycle; shifted by a bulk tension, Nowell and Hills 1987); none elsewhere.
+std::optional<closed_form::StickZone> mindlin_stick_zone(const Scene& scene, const NormalResult& n,
+                                                         const CycleStage& cycle);
+
 std::vector<Phase> cycle_phases(const Scene& scene, const std::vector<double>& p, const std::vector<double>* q_top);
 
 // The loads at the top and the bottom of the unworn contact's steady cycle, as solved (just "loaded" without one):

@@ -82,7 +82,7 @@ const std::vector<StageOutputs>& stage_outputs() {
       {"wear", &Timings::wear, [](const RunResult& r) { return r.wear.has_value(); },
        [](const Scene& s, const RunResult& r, json& j) { j["wear"] = summarise_wear(s, *r.wear); },
        [](const Scene& s, const RunResult& r, OutputFolder& out, Written& w) {
-         write_wear(s, r.normal, *r.wear, out, w);
+         write_wear(s, r.normal, *r.cycle, *r.wear, out, w);
        }},
       {"stress", &Timings::stress, [](const RunResult& r) { return !r.stress_maps.empty(); },
        [](const Scene& s, const RunResult& r, json& j) {

@@ -92,7 +92,7 @@ std::vector<std::size_t> plotted_records(const WearStage& w) {
 
 // wear.gp: the worn profile and the pressure as they evolve (with the asymptote dashed), the stick zone and the
 // worn area against cycles.
-std::string wear_plot_script(const Scene& scene, const NormalResult& n, const WearStage& w) {
+std::string wear_plot_script(const Scene& scene, const NormalResult& n, const CycleStage& cycle, const WearStage& w) {
   const int cells = n.grid.n;
   const std::vector<std::size_t> shown = plotted_records(w);
   const WearAsymptote& a = w.asymptote;
@@ -186,6 +186,12 @@ set grid
       stick += fmt::format(", {0} with lines dt 2 lw 1 lc rgb '#555555' title 'worn extent of the asymptote', {1} with "
                            "lines dt 2 lw 1 lc rgb '#555555' notitle",
                            num(w.asymptote.extent.first * 1e3), num(w.asymptote.extent.second * 1e3));
+    // Where it exists, the closed form of the unworn stick zone (Cattaneo–Mindlin; the first record's should sit on
+    // it to a cell).
+    if (const auto cm = mindlin_stick_zone(scene, n, cycle))
+      stick += fmt::format(", {0} with lines dt 4 lw 2 lc rgb '#2ca02c' title 'Cattaneo–Mindlin, unworn', {1} with "
+                           "lines dt 4 lw 2 lc rgb '#2ca02c' notitle",
+                           num((cm->centre - cm->c) * 1e3), num((cm->centre + cm->c) * 1e3));
     s += svg_and_png("wear_stick_zone", stick + "\n");
   }
   const double area_top = 1.12 * std::max(a.worn_area, [&] {
@@ -749,13 +755,13 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
   return out;
 }
 
-void write_wear(const Scene& scene, const NormalResult& normal, const WearStage& w, OutputFolder& out,
-                Written& written) {
+void write_wear(const Scene& scene, const NormalResult& normal, const CycleStage& cycle, const WearStage& w,
+                OutputFolder& out, Written& written) {
   out.write("wear_history.csv", wear_history_csv(w));
   out.write("profiles.csv", profiles_csv(scene, normal, w));
   written.tables.insert(written.tables.end(), {"wear_history.csv", "profiles.csv"});
   if (!scene.plots) return;
-  out.write("wear.gp", wear_plot_script(scene, normal, w));
+  out.write("wear.gp", wear_plot_script(scene, normal, cycle, w));
   if (!run_gnuplot(out.path(""), "wear.gp")) return;
   auto& plots = written.plots;
   plots.insert(plots.end(), {"wear_depth.svg", "wear_depth.png", "wear_pressure.svg", "wear_pressure.png"});

@@ -145,7 +145,8 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& wear);
 
 // wear_history.csv, profiles.csv and, with plots, wear.gp (the worn profile and the pressure at each record, the stick
 // zone and the worn area against cycles).
-void write_wear(const Scene& scene, const NormalResult& normal, const WearStage& wear, OutputFolder& out,
+void write_wear(const Scene& scene, const NormalResult& normal, const CycleStage& cycle, const WearStage& wear,
+                OutputFolder& out,
                 Written& written);
 
 }  // namespace fretwear

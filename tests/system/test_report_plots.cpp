@@ -119,6 +119,17 @@ TEST_CASE("the plot scripts carry K_{II}, viridis maps cropped to the data, labe
   const std::string cycle = r.file("cycle.gp");
   CHECK(cycle.find("cm_q(x) with lines") != std::string::npos);
   CHECK(cycle.find("title 'Cattaneo–Mindlin, top (c/a = 0.7071)'") != std::string::npos);
+  // The stick zone against cycles, with the unworn closed form (c/a = 0.7071 of the Hertz half-width) as its lines.
+  const std::size_t stick = wear.find("stick zone and contact extent against cycles");
+  REQUIRE(stick != std::string::npos);
+  const std::size_t cm = wear.find("title 'Cattaneo–Mindlin, unworn'", stick);
+  REQUIRE(cm != std::string::npos);
+  const double a = r.summary["contact"]["closed_form"]["half_width"].get<double>();
+  const double left = std::stod(wear.substr(wear.rfind(", ", cm) + 2, 40));
+  const std::size_t next = wear.find("', ", cm) + 3;  // past the title's closing quote
+  const double right = std::stod(wear.substr(next, 40));
+  CHECK(wear.find("notitle", next) < wear.find(", ", next));  // the right end, the legend's second line
+  CHECK(0.5 * (right - left) == doctest::Approx(0.7071 * a * 1e3).epsilon(2e-4));  // c/a = √(1 − Q/fP)
 }
 
 TEST_CASE("the life map is viridis and cropped, and displacement control draws no Cattaneo–Mindlin traction") {

@@ -274,9 +274,15 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     run.name = name;
     result.runs.push_back(run);
   }
-  const std::vector<std::string> target = output_dir_problems(base_scene, scene_file, OutputCommand::sweep);
-  problems.insert(problems.begin(), target.begin(), target.end());
+  // The output folder is checked by the root alone, before it makes anything there (another process checking it
+  // meanwhile could find the root's staging folder), and its verdict is every process's.
+  if (result.root) {
+    const std::vector<std::string> target = output_dir_problems(base_scene, scene_file, OutputCommand::sweep);
+    problems.insert(problems.begin(), target.begin(), target.end());
+  }
+  const std::string verdict = dispatch->share(problems.empty() ? "" : "invalid");
   if (!problems.empty()) throw SceneError(problems);
+  if (!verdict.empty()) throw SceneError({"the sweep is invalid (rank 0 says why)"});
   dispatch->parted = true;
 
   // The root stages the sweep's folder, takes over the complete runs of a killed sweep, and tells every process

@@ -2,7 +2,8 @@
 # Installs fretwear's build and test dependencies from Debian (12, bookworm), only those that are missing.
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libboost-dev libfmt-dev nlohmann-json3-dev
-          doctest-dev libfftw3-dev libcli11-dev libbenchmark-dev gnuplot-nox python3 python3-jsonschema)
+          doctest-dev libfftw3-dev libcli11-dev libbenchmark-dev gnuplot-nox python3 python3-jsonschema
+          libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

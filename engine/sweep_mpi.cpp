@@ -64,6 +64,10 @@ void send_text(const std::string& text, int to, int tag) {
 class OpenMpiSweep final : public MpiSweep {
  public:
   explicit OpenMpiSweep(int jobs) : jobs_(jobs) {
+    // Open MPI passes large messages between ranks of one machine by reading the other process's memory (CMA),
+    // which needs ptrace permission that containers often withhold; the messages here are summaries of a few kB,
+    // copied as cheaply through shared memory. A setting of the user's wins.
+    ::setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 0);
     int provided = 0;
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);  // MPI is called from the main thread alone
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <thread>
 #include <utility>
@@ -26,6 +27,7 @@
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"
 #include "engine/sweep.hpp"
+#include "engine/sweep_mpi.hpp"
 #include "engine/version.hpp"
 #include "engine/wear_stage.hpp"
 
@@ -339,6 +341,36 @@ int convergence(const std::string& path, int from, int to, bool quiet) {
   return 0;
 }
 
+// `fretwear sweep`: on the local cores, or over the ranks of `mpi`, whose rank 0 alone reports.
+int sweep(const std::string& scene_path, const std::vector<std::string>& vary, int jobs, bool resume, bool quiet,
+          const std::unique_ptr<MpiSweep>& mpi) {
+  std::vector<Variation> variations;
+  for (const auto& v : vary) variations.push_back(parse_variation(v));
+  SweepOptions options;
+  options.jobs = jobs;
+  options.resume = resume;
+  options.dispatch = mpi.get();
+  const bool root = !mpi || mpi->root();
+  options.progress = quiet || !root ? nullptr : &std::cerr;
+  options.terminal = ::isatty(STDERR_FILENO) == 1;
+  const SweepResult r = run_sweep(scene_path, variations, options);
+  if (!r.root) return 0;
+  int failed = 0;
+  for (const auto& run : r.runs) failed += run.status != 0;
+  if (!quiet)
+    std::cout << fmt::format("{} runs, {} failed; table in {}\n", r.runs.size(), failed,
+                             (r.dir / "sweep.csv").string());
+  return failed == 0 ? 0 : kExitNoConvergence;
+}
+
+// An error that ends the program with `code`: said once, by rank 0 under MPI (every rank finds the same invalid
+// scene); past the point where the ranks part ways, the others are ended with it.
+int failed(MpiSweep* mpi, const std::string& message, int code) {
+  if (!mpi || mpi->root()) std::cerr << message;
+  if (mpi && mpi->parted) mpi->abandon(code);
+  return code;
+}
+
 // The subcommands, and the options before them; a word before the subcommand that is neither is named in the error.
 const std::vector<std::string> kCommands{"run", "validate", "defaults", "convergence", "sweep"};
 const std::vector<std::string> kTopOptions{"-q", "--quiet", "-v", "--verbose", "--version", "-h", "--help"};
@@ -390,11 +422,18 @@ int main(int argc, char** argv) {
   conv_cmd->add_option("--to", to, "finest grid (cells)")->check(CLI::Range(16, 1 << 20));
   std::vector<std::string> vary;
   int jobs = int(std::max(1u, std::thread::hardware_concurrency()));
-  auto* sweep_cmd = app.add_subcommand("sweep", "run the product of variations of a scene on the local cores");
+  auto* sweep_cmd = app.add_subcommand("sweep", "run the product of variations of a scene on the local cores, or "
+                                                "over the ranks of mpirun or srun");
   sweep_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
   sweep_cmd->add_option("--vary", vary, "key=v1,v2,... (a dotted scene key, e.g. load.Q.ratio=0.2,0.4,0.6); repeat")
       ->required();
-  sweep_cmd->add_option("--jobs", jobs, "runs at once (default: the number of cores)")->check(CLI::Range(1, 256));
+  sweep_cmd->add_option("--jobs", jobs, "runs at once (default: the number of cores; under mpirun or srun each rank "
+                                     "runs one at a time)")
+      ->check(CLI::Range(1, 256));
+  bool sweep_resume = false;
+  sweep_cmd->add_flag("--resume", sweep_resume,
+                      "finish a sweep that was stopped or killed: keep its complete runs, run the others, write the "
+                      "tables and maps");
   for (auto* sub : {run_cmd, validate_cmd, conv_cmd, sweep_cmd}) {
     sub->add_flag("-q,--quiet", quiet, "print nothing but errors");
     sub->add_flag("-v,--verbose", verbose, "print more detail");
@@ -416,7 +455,9 @@ int main(int argc, char** argv) {
     std::cerr << "fretwear: --checkpoint-every: not a number; give seconds from 0 to 1e9\n";
     return kExitInvalid;
   }
+  std::unique_ptr<MpiSweep> mpi;  // under mpirun or srun: MPI, started here and ended (after every rank) at return
   try {
+    if (*sweep_cmd) mpi = start_mpi_if_launched(jobs);
     if (*run_cmd) return run(scene_path, quiet, verbose, resume, checkpoint_every);
     if (*validate_cmd) return validate(scene_path, quiet, verbose);
     if (app.got_subcommand("defaults")) {
@@ -424,26 +465,13 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*conv_cmd) return convergence(scene_path, from, to, quiet);
-    if (*sweep_cmd) {
-      std::vector<Variation> variations;
-      for (const auto& v : vary) variations.push_back(parse_variation(v));
-      const SweepResult r = run_sweep(scene_path, variations, jobs, quiet ? nullptr : &std::cerr);
-      int failed = 0;
-      for (const auto& run : r.runs) failed += run.status != 0;
-      if (!quiet)
-        std::cout << fmt::format("{} runs, {} failed; table in {}\n", r.runs.size(), failed,
-                                 (r.dir / "sweep.csv").string());
-      return failed == 0 ? 0 : kExitNoConvergence;
-    }
+    if (*sweep_cmd) return sweep(scene_path, vary, jobs, sweep_resume, quiet, mpi);
   } catch (const InputError& e) {
-    std::cerr << "fretwear: " << e.what() << "\n";
-    return kExitInvalid;
+    return failed(mpi.get(), fmt::format("fretwear: {}\n", e.what()), kExitInvalid);
   } catch (const ConvergenceError& e) {
-    std::cerr << "fretwear: " << e.what() << "\n";
-    return kExitNoConvergence;
+    return failed(mpi.get(), fmt::format("fretwear: {}\n", e.what()), kExitNoConvergence);
   } catch (const std::exception& e) {
-    std::cerr << "fretwear: internal error: " << e.what() << "\n";
-    return 1;
+    return failed(mpi.get(), fmt::format("fretwear: internal error: {}\n", e.what()), 1);
   }
   return 0;
 }

@@ -1,21 +1,28 @@
 #include "engine/sweep.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdlib>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "engine/deferred_signals.hpp"
 #include "engine/folder.hpp"
 #include "engine/output.hpp"
-#include "engine/plot.hpp"
 #include "engine/preflight.hpp"
 #include "engine/scene.hpp"
 #include "engine/simulation.hpp"
+#include "engine/sweep_plots.hpp"
 
 namespace fretwear {
 namespace fs = std::filesystem;
@@ -56,14 +63,29 @@ std::string word(const json& v) {
   return s;
 }
 
-// The summary's scalars worth a column.
-// Several contact or stick zones appear one pair each in contact.zones and cycle.stick_zones.
-const char* kColumns[] = {"contact.p_max",      "contact.extent",          "contact.zones",
-                          "cycle.regime",       "cycle.stick_zone",        "cycle.stick_zones",
-                          "cycle.dissipated_energy", "cycle.slip_max",     "wear.worn_area",
-                          "wear.max_depth",     "wear.fraction_of_asymptote", "crack.K_I_max",
-                          "life.initiation.cycles", "life.propagation.cycles", "life.total_cycles", "life.fate",
-                          "timings.total"};
+// The summary's scalars worth a column, each with its unit as the column names it (empty: a count, a word or a
+// ratio). Several contact or stick zones appear one pair each in contact.zones and cycle.stick_zones.
+struct Column {
+  const char* key;
+  const char* unit;
+};
+constexpr Column kColumns[] = {{"contact.p_max", "Pa"},
+                               {"contact.extent", "m"},
+                               {"contact.zones", "m"},
+                               {"cycle.regime", ""},
+                               {"cycle.stick_zone", "m"},
+                               {"cycle.stick_zones", "m"},
+                               {"cycle.dissipated_energy", "J_m"},
+                               {"cycle.slip_max", "m"},
+                               {"wear.worn_area", "m2"},
+                               {"wear.max_depth", "m"},
+                               {"wear.fraction_of_asymptote", ""},
+                               {"crack.K_I_max", "Pa_sqrt_m"},
+                               {"life.initiation.cycles", ""},
+                               {"life.propagation.cycles", ""},
+                               {"life.total_cycles", ""},
+                               {"life.fate", ""},
+                               {"timings.total", "s"}};
 
 json get(const json& j, const std::string& dotted) {
   const json* node = &j;
@@ -75,35 +97,155 @@ json get(const json& j, const std::string& dotted) {
   return *node;
 }
 
-// The total width of a list of zones [[l, r], ...] (m).
-double total_width(const json& zones) {
-  double w = 0.0;
-  for (const json& z : zones) w += z[1].get<double>() - z[0].get<double>();
-  return w;
+std::string clock_time(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+                   : fmt::format("{}:{:02}", s / 60, s % 60);
 }
 
-// The fretting map's value of a run: the stick zones' share of the contact zones, zone by zone (0 in gross slip; the
-// gaps between several zones count in neither), or the worn area when the scene wears.
-double map_value(const json& s, bool wears) {
-  if (wears) return get(s, "wear.worn_area").is_number() ? get(s, "wear.worn_area").get<double>() : NAN;
-  const json stick = get(s, "cycle.stick_zones"), zones = get(s, "contact.zones");
-  if (!zones.is_array() || zones.empty()) return NAN;
-  if (!stick.is_array()) return 0.0;
-  return total_width(stick) / total_width(zones);
+bool ours(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_regular_file(dir / kOutputMarker, ec);
 }
+
+// The sweep folders a killed sweep of this scene left beside `dir` (<output.dir>/sweep): its staging folder
+// sweep.partial-<pid>, renamed here to sweep.resume-<pid> so that the staging of this sweep does not remove it, and
+// those of earlier resumes; newest first. --resume asserts that no other sweep of the scene is running.
+std::vector<fs::path> take_over_killed(const fs::path& dir) {
+  std::vector<std::pair<fs::file_time_type, fs::path>> found;
+  const fs::path parent = dir.parent_path();
+  const std::string name = dir.filename().string(), own = std::to_string(::getpid());
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(parent, ec)) {
+    const std::string entry = e.path().filename().string();
+    for (const std::string kind : {".partial-", ".resume-"}) {
+      const std::string prefix = name + kind;
+      if (entry.rfind(prefix, 0) != 0) continue;
+      const std::string pid = entry.substr(prefix.size());
+      if (pid.empty() || pid == own || pid.find_first_not_of("0123456789") != std::string::npos) continue;
+      if (!ours(e.path())) continue;
+      fs::path at = e.path();
+      if (kind == std::string(".partial-")) {
+        const fs::path renamed = parent / (name + ".resume-" + pid);
+        std::error_code rename_ec;
+        fs::rename(at, renamed, rename_ec);
+        if (rename_ec) continue;
+        at = renamed;
+      }
+      found.emplace_back(fs::last_write_time(at, ec), at);
+    }
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<fs::path> sources;
+  for (const auto& f : found) sources.push_back(f.second);
+  return sources;
+}
+
+// True when the resolved scene a run wrote holds every value of `wanted` (the variant's scene before solving): the
+// run adds what it resolved (the grid's window, ...). The output folder is left out: it names the staging folder of
+// the sweep that ran it.
+bool holds(const json& resolved, const json& wanted, bool top = true) {
+  if (!wanted.is_object()) return resolved == wanted;
+  if (!resolved.is_object()) return false;
+  for (const auto& [key, value] : wanted.items()) {
+    if (top && key == "output") continue;
+    if (!resolved.contains(key) || !holds(resolved[key], value, false)) return false;
+  }
+  return true;
+}
+
+// The summary of a complete run folder of `scene` (written whole by its own staging and commit: a folder under its
+// final name has every file), or null when the folder is missing, partial or of another scene.
+json complete_summary(const fs::path& folder, const Scene& scene) {
+  std::error_code ec;
+  if (!fs::is_regular_file(folder / "summary.json", ec) || !fs::is_regular_file(folder / "scene.resolved.json", ec))
+    return nullptr;
+  std::ifstream summary_file(folder / "summary.json"), scene_file(folder / "scene.resolved.json");
+  const json summary = json::parse(summary_file, nullptr, false), resolved = json::parse(scene_file, nullptr, false);
+  if (!summary.is_object() || !summary.contains("contact") || !resolved.is_object()) return nullptr;
+  if (!holds(resolved, scene.to_json())) return nullptr;
+  return summary;
+}
+
+// The number of runs after which kKillAfterRunsVariable kills this process; 0: never.
+std::size_t kill_after_runs() {
+  const char* v = std::getenv(kKillAfterRunsVariable);
+  return v ? std::size_t(std::strtoul(v, nullptr, 10)) : 0;
+}
+
+// Runs one run into its folder; never throws.
+SweepOutcome run_one(const Scene& scene) {
+  SweepOutcome o;
+  try {
+    OutputFolder folder(scene.output_dir);
+    const RunResult r = Simulation(scene).run();
+    o.summary = write_results(scene, r, folder);
+    folder.commit();
+  } catch (const ConvergenceError& e) {
+    o.status = 3, o.message = e.what();
+  } catch (const InputError& e) {
+    o.status = 2, o.message = e.what();
+  } catch (const std::exception& e) {
+    o.status = 1, o.message = std::string("internal error: ") + e.what();
+  }
+  return o;
+}
+
+class ThreadDispatch final : public SweepDispatch {
+ public:
+  explicit ThreadDispatch(int jobs) : jobs_(std::max(1, jobs)) {}
+  bool root() const override { return true; }
+  std::string share(const std::string& text) override { return text; }
+  void run_all(const std::vector<std::size_t>& todo, const std::function<SweepOutcome(std::size_t)>& run,
+               const std::function<void(std::size_t, const SweepOutcome&)>& done) override {
+    std::atomic<std::size_t> next{0};
+    std::mutex report;
+    auto worker = [&] {
+      for (std::size_t i; (i = next++) < todo.size();) {
+        const SweepOutcome o = run(todo[i]);
+        const std::lock_guard lock(report);
+        done(todo[i], o);
+      }
+    };
+    std::vector<std::jthread> pool;
+    for (int t = 0; t < jobs_; ++t) pool.emplace_back(worker);
+  }
+
+ private:
+  int jobs_;
+};
 
 }  // namespace
 
-SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& variations, int jobs,
-                      std::ostream* progress) {
+json to_json(const SweepOutcome& o) {
+  return {{"status", o.status}, {"message", o.message}, {"summary", o.summary}, {"rank", o.rank}};
+}
+
+SweepOutcome outcome_from_json(const json& j) {
+  SweepOutcome o;
+  o.status = j.at("status").get<int>();
+  o.message = j.at("message").get<std::string>();
+  o.summary = j.at("summary");
+  o.rank = j.at("rank").get<int>();
+  return o;
+}
+
+std::unique_ptr<SweepDispatch> thread_dispatch(int jobs) { return std::make_unique<ThreadDispatch>(jobs); }
+
+SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& variations,
+                      const SweepOptions& options) {
+  std::unique_ptr<SweepDispatch> own_dispatch;
+  SweepDispatch* dispatch = options.dispatch;
+  if (!dispatch) dispatch = (own_dispatch = thread_dispatch(options.jobs)).get();
   std::ifstream in(scene_file);
   const Scene base_scene = load_scene(scene_file);  // the base must be valid on its own
   json base = json::parse(in, nullptr, false);
   SweepResult result;
   result.variations = variations;
   result.dir = output_folder(base_scene, OutputCommand::sweep);
+  result.root = dispatch->root();
 
-  // Every combination, validated before anything runs.
+  // Every combination, validated before anything runs (in every process alike).
   std::vector<Scene> scenes;
   std::vector<std::string> problems;
   std::size_t total = 1;
@@ -132,121 +274,137 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     run.name = name;
     result.runs.push_back(run);
   }
-  const std::vector<std::string> target = output_dir_problems(base_scene, scene_file, OutputCommand::sweep);
-  problems.insert(problems.begin(), target.begin(), target.end());
+  // The output folder is checked by the root alone, before it makes anything there (another process checking it
+  // meanwhile could find the root's staging folder), and its verdict is every process's.
+  if (result.root) {
+    const std::vector<std::string> target = output_dir_problems(base_scene, scene_file, OutputCommand::sweep);
+    problems.insert(problems.begin(), target.begin(), target.end());
+  }
+  const std::string verdict = dispatch->share(problems.empty() ? "" : "invalid");
   if (!problems.empty()) throw SceneError(problems);
+  if (!verdict.empty()) throw SceneError({"the sweep is invalid (rank 0 says why)"});
+  dispatch->parted = true;
 
-  OutputFolder out(result.dir, OutputCommand::sweep);
-  fs::create_directories(out.path("runs"));
-  std::atomic<std::size_t> next{0};
-  std::mutex report;
-  auto worker = [&] {
-    for (std::size_t k; (k = next++) < scenes.size();) {
+  // The root stages the sweep's folder, takes over the complete runs of a killed sweep, and tells every process
+  // where the runs go.
+  std::optional<OutputFolder> out;
+  std::vector<fs::path> killed;
+  std::vector<std::size_t> todo;
+  std::string runs_dir;
+  if (result.root) {
+    if (options.resume) killed = take_over_killed(result.dir);
+    out.emplace(result.dir, OutputCommand::sweep);
+    fs::create_directories(out->path("runs"));
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
       SweepRun& run = result.runs[k];
       Scene scene = scenes[k];
-      scene.output_dir = out.path("runs") / run.name;
-      try {
-        OutputFolder folder(scene.output_dir);
-        const RunResult r = Simulation(scene).run();
-        run.summary = write_results(scene, r, folder);
-        folder.commit();
-      } catch (const ConvergenceError& e) {
-        run.status = 3, run.message = e.what();
-      } catch (const InputError& e) {
-        run.status = 2, run.message = e.what();
+      scene.output_dir = out->path("runs") / run.name;
+      if (options.resume) {
+        // Moved from a killed sweep's folder; copied from the last finished sweep's, which stays whole until this
+        // one replaces it.
+        std::vector<fs::path> sources = killed;
+        if (ours(result.dir)) sources.push_back(result.dir);
+        for (const fs::path& source : sources) {
+          const fs::path from = source / "runs" / run.name;
+          json summary = complete_summary(from, scene);
+          if (summary.is_null()) continue;
+          std::error_code ec;
+          if (source == result.dir)
+            fs::copy(from, scene.output_dir, fs::copy_options::recursive, ec);
+          else
+            fs::rename(from, scene.output_dir, ec);
+          if (ec) {
+            fs::remove_all(scene.output_dir, ec);
+            continue;
+          }
+          run.summary = std::move(summary);
+          run.kept = true;
+          break;
+        }
       }
-      std::lock_guard lock(report);
-      if (progress)
-        *progress << fmt::format("  [{}/{}] {}: {}\n", k + 1, scenes.size(), run.name,
-                                 run.status == 0 ? "done" : run.message) << std::flush;
+      if (!run.kept) todo.push_back(k);
+    }
+    runs_dir = out->path("runs").string();
+  }
+  runs_dir = dispatch->share(runs_dir);
+
+  const std::size_t kept = result.runs.size() - todo.size(), kill_after = kill_after_runs();
+  if (options.progress && result.root) {
+    *options.progress << fmt::format("sweep: {} runs", result.runs.size());
+    if (options.resume) *options.progress << fmt::format(", {} kept from the sweep that was stopped", kept);
+    *options.progress << "\n" << std::flush;
+  }
+  const auto started = std::chrono::steady_clock::now();
+  std::size_t finished = 0;
+  auto run = [&](std::size_t k) {
+    Scene scene = scenes[k];
+    scene.output_dir = fs::path(runs_dir) / result.runs[k].name;
+    return run_one(scene);
+  };
+  auto done = [&](std::size_t k, const SweepOutcome& o) {
+    SweepRun& r = result.runs[k];
+    r.status = o.status, r.message = o.message, r.summary = o.summary;
+    ++finished;
+    if (kill_after != 0 && finished == kill_after) {
+      if (options.progress) *options.progress << fmt::format("  killed after {} runs ({})\n", finished, kKillAfterRunsVariable) << std::flush;
+      std::raise(SIGKILL);
+    }
+    if (!options.progress) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const std::size_t left = todo.size() - finished;
+    if (options.terminal) {
+      // The time left, as if the runs still to come cost what those finished did on average.
+      *options.progress << fmt::format("\r\033[Ksweep: {}/{} runs{}, {} elapsed, ~{} left{}", kept + finished,
+                                       result.runs.size(), kept ? fmt::format(" ({} kept)", kept) : "",
+                                       clock_time(elapsed), clock_time(elapsed * double(left) / double(finished)),
+                                       o.status == 0 ? "" : fmt::format("; {}: {}\n", r.name, o.message));
+      if (left == 0) *options.progress << "\n";
+      *options.progress << std::flush;
+    } else {
+      *options.progress << fmt::format("  [{}/{}] {}: {}{}\n", kept + finished, result.runs.size(), r.name,
+                                       o.status == 0 ? "done" : o.message,
+                                       o.rank >= 0 ? fmt::format(" (rank {})", o.rank) : "")
+                        << std::flush;
     }
   };
-  std::vector<std::jthread> pool;
-  for (int t = 0; t < std::max(1, jobs); ++t) pool.emplace_back(worker);
-  pool.clear();  // joins
+  dispatch->run_all(todo, run, done);
+  if (!result.root) return result;
 
-  // The table: the varied values, the status, and the summary's scalars.
+  // The table: the varied values, the status, and the summary's scalars, each numeric column named with its unit.
   std::string csv;
-  for (const auto& v : variations) csv += v.key + ",";
+  for (const auto& v : variations) csv += column_name(v.key) + ",";
   csv += "status,name";
-  for (const char* c : kColumns) csv += std::string(",") + c;
+  for (const Column& c : kColumns) csv += fmt::format(",{}{}{}", c.key, *c.unit ? "_" : "", c.unit);
   csv += "\n";
-  json table = json::array();
-  for (const SweepRun& run : result.runs) {
-    for (const auto& v : run.values) csv += (v.is_string() ? v.get<std::string>() : v.dump()) + ",";
-    csv += fmt::format("{},{}", run.status, run.name);
-    json row = {{"name", run.name}, {"status", run.status}, {"values", run.values}};
-    for (const char* c : kColumns) {
-      const json v = get(run.summary, c);
+  json table = json::array(), units = json::object();
+  for (const Column& c : kColumns)
+    if (*c.unit) units[c.key] = c.unit;
+  for (const auto& v : variations)
+    if (!key_unit(v.key).label.empty()) units[v.key] = key_unit(v.key).label;
+  for (const SweepRun& r : result.runs) {
+    for (const auto& v : r.values) csv += (v.is_string() ? v.get<std::string>() : v.dump()) + ",";
+    csv += fmt::format("{},{}", r.status, r.name);
+    json row = {{"name", r.name}, {"status", r.status}, {"values", r.values}};
+    for (const Column& c : kColumns) {
+      const json v = get(r.summary, c.key);
       std::string cell = v.is_null() ? "" : v.is_string() ? v.get<std::string>() : v.dump();
       if (v.is_array()) cell = "\"" + cell + "\"";
       csv += "," + cell;
-      row[c] = v;
+      row[c.key] = v;
     }
-    if (!run.message.empty()) row["message"] = run.message;
+    if (!r.message.empty()) row["message"] = r.message;
     csv += "\n";
     table.push_back(row);
   }
-  out.write("sweep.csv", csv);
-  out.write_json("sweep.json", {{"scene", base_scene.name}, {"runs", table}});
-
-  // The fretting map over the first two varied keys (a line over one).
-  if (base_scene.plots && !variations.empty()) {
-    const bool wears = base_scene.wear.has_value();
-    const std::string what = wears ? "worn area (m²)" : "stick zones / contact zones, in width";
-    std::string dat;
-    const std::size_t n0 = variations[0].values.size();
-    for (std::size_t k = 0; k < result.runs.size(); ++k) {
-      const auto& run = result.runs[k];
-      const double value = run.status == 0 ? map_value(run.summary, wears) : NAN;
-      const bool numeric = std::all_of(run.values.begin(), run.values.end(), [](const json& v) { return v.is_number(); });
-      if (!numeric) continue;
-      dat += fmt::format("{} {} {}\n", run.values[0].get<double>(),
-                         variations.size() > 1 ? run.values[1].get<double>() : 0.0,
-                         std::isfinite(value) ? fmt::format("{}", value) : std::string("NaN"));
-      if ((k + 1) % n0 == 0) dat += "\n";
-    }
-    out.write("sweep_map.dat", dat);
-    std::string gp = "# The fretting map. Re-run with: gnuplot sweep.gp\nset grid\n";
-    gp += fmt::format("set title \"{}: {}\" noenhanced\nset xlabel '{}' noenhanced\n", base_scene.name, what,
-                      variations[0].key);
-    std::string plot;
-    if (variations.size() > 1) {
-      gp += fmt::format("set ylabel '{}' noenhanced\nset view map\nset pm3d map\nset palette rgbformulae 33,13,10\n"
-                        "set cblabel '{}'\n", variations[1].key, what);
-      plot = "splot 'sweep_map.dat' using 1:2:3 with pm3d notitle, '' using 1:2:3 with points pt 7 ps 0.6 lc rgb "
-             "'black' notitle\n";
-    } else {
-      gp += fmt::format("set ylabel '{}'\n", what);
-      plot = "plot 'sweep_map.dat' using 1:3 with linespoints pt 7 lw 2 notitle\n";
-    }
-    gp += "set terminal svg size 900,600 dynamic font 'sans,12'\nset output 'sweep_map.svg'\n" + plot;
-    gp += "set terminal pngcairo size 900,600 font 'sans,11'\nset output 'sweep_map.png'\nreplot\nunset output\n";
-    if (base_scene.life) {  // the life against the first varied key (a run that never fails is left out)
-      std::string life;
-      for (const auto& run : result.runs) {
-        const json life_total = run.status == 0 ? get(run.summary, "life.total_cycles") : json(nullptr);
-        const json init = run.status == 0 ? get(run.summary, "life.initiation.cycles") : json(nullptr);
-        if (!run.values[0].is_number()) continue;
-        life += fmt::format("{} {} {}\n", run.values[0].get<double>(),
-                            life_total.is_number() ? fmt::format("{}", life_total.get<double>()) : std::string("NaN"),
-                            init.is_number() ? fmt::format("{}", init.get<double>()) : std::string("NaN"));
-      }
-      out.write("sweep_life.dat", life);
-      gp += fmt::format("reset\nset grid\nset logscale y\nset format y '10^{{%T}}'\nset title \"{}: life "
-                        "(runs that never fail are left out)\" noenhanced\nset xlabel '{}' noenhanced\n"
-                        "set ylabel 'cycles'\nset key left top\n",
-                        base_scene.name, variations[0].key);
-      gp += svg_and_png("sweep_life", "plot 'sweep_life.dat' using 1:2 with linespoints pt 7 lw 2 lc rgb '#d62728' "
-                                      "title 'total life', '' using 1:3 with linespoints pt 6 lw 1.5 dt 2 "
-                                      "lc rgb '#1f77b4' title 'initiation'\n",
-                        900, 600);
-    }
-    out.write("sweep.gp", gp);
-    run_gnuplot(out.path(""), "sweep.gp");
-  }
+  out->write("sweep.csv", csv);
+  out->write_json("sweep.json", {{"scene", base_scene.name}, {"units", units}, {"runs", table}});
+  if (base_scene.plots) write_sweep_maps(result, base_scene.name, base_scene.wear.has_value(), bool(base_scene.life), *out);
   const DeferredStopSignals hold;
-  out.commit();
+  out->commit();
+  for (const fs::path& k : killed) {
+    std::error_code ec;
+    if (ours(k)) fs::remove_all(k, ec);
+  }
   return result;
 }
 

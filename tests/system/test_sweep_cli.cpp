@@ -1,9 +1,13 @@
 // `fretwear sweep` on the command line: the runs, the table, the exit status. What a sweep computes is checked in
 // process by tests/unit/test_sweep.cpp.
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -64,4 +68,57 @@ TEST_CASE("a sweep of a scene with a life effect tabulates the lives and draws t
   CHECK(row.find("failure") != std::string::npos);
   if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
     CHECK(fs::exists(s.work / "out" / "sweep" / "sweep_life.png"));
+}
+
+TEST_CASE("a 3 x 3 sweep draws 3 x 3 cells that tile the plane, a regime map with units, and names units in sweep.csv") {
+  Scratch s;
+  json scene = json::parse(fretwear::test::read_file(write_scene(s)));
+  scene["output"]["plots"] = true;
+  s.write("sw.json", scene.dump());
+  const Outcome r = s.fretwear({"sweep", "sw.json", "--vary", "load.Q.ratio=0.3,0.6,1.2", "--vary",
+                                "load.P=1e5,2e5,1.6e6", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const fs::path dir = s.work / "out" / "sweep";
+  std::string header;
+  std::getline(std::ifstream(dir / "sweep.csv"), header);
+  for (const char* column : {"load.Q.ratio,", "load.P_N_m,", "contact.p_max_Pa,", "cycle.stick_zone_m,",
+                             "cycle.dissipated_energy_J_m,", "wear.worn_area_m2,", "timings.total_s"})
+    CHECK_MESSAGE(header.find(column) != std::string::npos, column);
+
+  // A row per run: x y value x_lo x_hi y_lo y_hi rgb regime. Cells meet halfway between neighbouring values (on a
+  // log axis for P, whose values span 16×: geometrically), so they tile the map with no gap and no overlap.
+  std::ifstream dat(dir / "sweep_map.dat");
+  std::vector<std::array<double, 7>> cells;
+  std::vector<std::string> regimes;
+  for (std::string line; std::getline(dat, line);) {
+    if (line.empty()) continue;
+    std::istringstream row(line);
+    std::array<double, 7> c{};
+    int rgb = 0;
+    std::string regime;
+    for (double& v : c) row >> v;
+    row >> rgb >> regime;
+    REQUIRE(row);
+    cells.push_back(c);
+    regimes.push_back(regime);
+  }
+  REQUIRE(cells.size() == 9);
+  for (std::size_t k = 0; k < 9; ++k) {
+    CAPTURE(k);
+    CHECK((cells[k][3] < cells[k][0] && cells[k][0] < cells[k][4]));
+    CHECK((cells[k][5] < cells[k][1] && cells[k][1] < cells[k][6]));
+    if (k % 3 != 2) CHECK(cells[k][4] == cells[k + 1][3]);
+    if (k < 6) CHECK(cells[k][6] == cells[k + 3][5]);
+  }
+  CHECK(cells[0][6] == doctest::Approx(std::sqrt(1e5 * 2e5)));
+  CHECK(regimes[0] == "partial_slip");
+  CHECK(regimes[2] == "gross_slip");  // Q = 1.2 fP
+  const std::string gp = fretwear::test::read_file(dir / "sweep.gp");
+  CHECK(gp.find("set ylabel 'load.P (N/m)'") != std::string::npos);
+  CHECK(gp.find("set logscale y") != std::string::npos);
+  CHECK(gp.find("'#440154'") != std::string::npos);  // viridis
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    CHECK(fs::exists(dir / "sweep_regime.png"));
+    CHECK(fs::exists(dir / "sweep_map.png"));
+  }
 }

@@ -266,7 +266,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     j["name"] = name;
     j["output"] = {{"dir", (result.dir / "runs" / name).string()}, {"plots", base_scene.plots}};
     try {
-      scenes.push_back(parse_scene(j));
+      scenes.push_back(parse_scene(j, "scene", scene_file.parent_path()));  // a table's file beside the scene
       for (const auto& p : physics_problems(scenes.back())) problems.push_back(name + ": " + p);
     } catch (const SceneError& e) {
       for (const auto& p : e.problems()) problems.push_back(name + ": " + p);

@@ -122,3 +122,24 @@ TEST_CASE("a 3 x 3 sweep draws 3 x 3 cells that tile the plane, a regime map wit
     CHECK(fs::exists(dir / "sweep_map.png"));
   }
 }
+
+TEST_CASE("a sweep reads a measured profile's file beside its scene, from any working folder") {
+  // examples/measured_profile: a table read from crowned_pad.csv, named relative to the scene. The runs of a sweep
+  // are the scene's variants; each reads the file from the base scene's folder, not the working folder.
+  Scratch s;
+  const fs::path source = fs::path(FRETWEAR_SOURCE_DIR) / "examples" / "measured_profile";
+  const fs::path folder = s.work / "pads";
+  fs::create_directories(folder);
+  fs::copy_file(source / "crowned_pad.csv", folder / "crowned_pad.csv");
+  json scene = json::parse(std::ifstream(source / "crowned_pad.json"));
+  scene["grid"]["cells"] = 256;
+  scene["output"] = {{"dir", (s.work / "out").string()}, {"plots", false}};
+  std::ofstream(folder / "crowned_pad.json") << scene.dump();
+  const Outcome r = s.fretwear({"sweep", (folder / "crowned_pad.json").string(), "--vary", "load.P=2e5,3e5", "-q"});
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+  std::ifstream table(s.work / "out" / "sweep" / "sweep.csv");
+  std::string line;
+  int rows = 0;
+  while (std::getline(table, line)) ++rows;
+  CHECK(rows == 3);  // the header and the two runs
+}

@@ -55,6 +55,7 @@ void catch_stop_signals() {
 }
 
 std::string clock_time(double seconds) {
+  if (!(seconds < 1e7)) return "--";  // past 100 days (or not a number): no estimate worth printing
   const long s = std::lround(std::max(0.0, seconds));
   return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
 }
@@ -83,9 +84,11 @@ class ProgressLine {
     const double done = p.cycles - first_->second;  // in this process (a resumed run started part way)
     std::string left = "--";
     if (done > 0.0 && elapsed > 0.0) left = clock_time((p.total - p.cycles) * elapsed / done);
-    const std::string line =
-        fmt::format("wear: {:.0f} / {:.0f} cycles, ΔN {:.3g}, {:.1f}% of the limit, {} elapsed, ~{} left", p.cycles,
-                    p.total, p.dN, 100.0 * p.fraction, clock_time(elapsed), left);
+    // The share of the asymptote's worn area, where there is one (0 without: displacement control, dissimilar
+    // bodies, histories).
+    const std::string limit = p.fraction > 0.0 ? fmt::format(", {:.1f}% of the limit", 100.0 * p.fraction) : "";
+    const std::string line = fmt::format("wear: {:.0f} / {:.0f} cycles, ΔN {:.3g}{}, {} elapsed, ~{} left", p.cycles,
+                                         p.total, p.dN, limit, clock_time(elapsed), left);
     std::cerr << (terminal_ ? "\r\033[K" + line : line + "\n") << std::flush;
   }
   void finish() {

@@ -167,7 +167,7 @@ json save_explicit(const wear::ExplicitWearStepper& stepper, const wear::WearRat
   const auto& last = rate.last_response();
   return json{{"accepted", st.accepted}, {"rejected", st.rejected}, {"max_step", st.max_step},
               {"evaluations", rate.evaluations()}, {"p", blob(last.p)}, {"s", blob(last.s)},
-              {"stick", {last.has_stick, last.stick_left, last.stick_right}}};
+              {"stick", {last.has_stick, last.stick_left, last.stick_right}}, {"stick_zones", last.stick_zones}};
 }
 
 void restore_explicit(const json& j, wear::ExplicitWearStepper& stepper, wear::WearRateSystem& rate,
@@ -178,6 +178,7 @@ void restore_explicit(const json& j, wear::ExplicitWearStepper& stepper, wear::W
   last.has_stick = j.at("stick")[0].get<bool>();
   last.stick_left = j.at("stick")[1].get<double>();
   last.stick_right = j.at("stick")[2].get<double>();
+  if (j.contains("stick_zones")) last.stick_zones = j.at("stick_zones").get<std::vector<std::pair<double, double>>>();
   rate.restore(j.at("evaluations").get<long>(), std::move(last));
   // The derivative dopri5 carries at a step boundary is the rate of its last stage, at the state reached.
   const std::vector<double> dwdN = rate.last_rate();
@@ -224,6 +225,7 @@ json record_json(const WearRecord& r) {
           {"p_max", r.p_max},
           {"Q_max", r.Q_max},
           {"stick_zone", r.stick_zone ? json{r.stick_zone->first, r.stick_zone->second} : json(nullptr)},
+          {"stick_zones", r.stick_zones},
           {"contact", {r.contact.first, r.contact.second}},
           {"touching", {r.touching.first, r.touching.second}},
           {"fraction", r.fraction},
@@ -241,6 +243,8 @@ WearRecord record_from(const json& j) {
   r.p_max = j.at("p_max").get<double>();
   r.Q_max = j.value("Q_max", 0.0);
   if (!j.at("stick_zone").is_null()) r.stick_zone = Interval{j["stick_zone"][0], j["stick_zone"][1]};
+  if (j.contains("stick_zones")) r.stick_zones = j.at("stick_zones").get<std::vector<Interval>>();
+  else if (r.stick_zone) r.stick_zones = {*r.stick_zone};  // a checkpoint written before the zones were recorded
   r.contact = {j.at("contact")[0].get<double>(), j.at("contact")[1].get<double>()};
   if (j.contains("touching"))  // absent from checkpoints written before it was recorded
     r.touching = {j.at("touching")[0].get<double>(), j.at("touching")[1].get<double>()};

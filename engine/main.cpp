@@ -156,7 +156,10 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
                              "{:.4e} m",
                              w["law"].get<std::string>(), w["stepper"].get<std::string>(), v(w["cycles_reached"]),
                              w["steps"].get<long>(), v(w["worn_area"]), share, v(w["max_depth"]));
-    if (!w["stick_zone_initial"].is_null() && !w["stick_zone_final"].is_null())
+    if (w["stick_zones_initial"].size() > 1 || w["stick_zones_final"].size() > 1)
+      std::cout << fmt::format("; stick zones {} at the first record, {} at the last", zones(w["stick_zones_initial"]),
+                               zones(w["stick_zones_final"]));
+    else if (!w["stick_zone_initial"].is_null() && !w["stick_zone_final"].is_null())
       std::cout << fmt::format("; stick zone [{:.6e}, {:.6e}] m at the first record, [{:.6e}, {:.6e}] m at the last",
                                v(w["stick_zone_initial"][0]), v(w["stick_zone_initial"][1]),
                                v(w["stick_zone_final"][0]), v(w["stick_zone_final"][1]));

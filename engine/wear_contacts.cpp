@@ -100,6 +100,9 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   stick_zones_ = locate_zones(grid, corrective_.p, model_.g0);
   out.has_stick = !stick_zones_.empty();
   if (out.has_stick) out.stick_left = stick_zones_.front().left.x, out.stick_right = stick_zones_.back().right.x;
+  out.stick_zones.clear();
+  if (stick_zones_.size() > 1)
+    for (const Zone& z : stick_zones_) out.stick_zones.emplace_back(z.left.x, z.right.x);
 }
 
 json AnalogyContactResponse::save() const {
@@ -207,6 +210,8 @@ void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleR
   out.has_stick = cycle_.stick_zone.has_value();
   out.stick_left = out.stick_right = 0.0;
   if (out.has_stick) out.stick_left = cycle_.stick_zone->first, out.stick_right = cycle_.stick_zone->second;
+  out.stick_zones.clear();
+  if (out.has_stick && cycle_.stick_zones.size() > 1) out.stick_zones = cycle_.stick_zones;
   // In gross slip a cell out of contact would slide as its neighbours do on touching (wear/implicit_stepper.hpp:
   // lagging it at 0 is what makes the contact-implicit step unstable there). In partial slip it would not slip.
   if (cycle_.regime == Regime::gross_slip)

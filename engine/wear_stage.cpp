@@ -43,6 +43,24 @@ std::string wear_history_csv(const WearStage& w) {
   return s;
 }
 
+// The most stick zones any record has.
+std::size_t most_stick_zones(const WearStage& w) {
+  std::size_t most = 0;
+  for (const WearRecord& r : w.records) most = std::max(most, r.stick_zones.size());
+  return most;
+}
+
+// Several stick zones: one row per zone and record, zone by zone (numbered from 0, left to right in each record),
+// so that each zone's rows follow one another.
+std::string wear_stick_zones_csv(const WearStage& w) {
+  std::string s = "cycles,zone,stick_left_m,stick_right_m\n";
+  for (std::size_t k = 0; k < most_stick_zones(w); ++k)
+    for (const WearRecord& r : w.records)
+      if (k < r.stick_zones.size())
+        s += fmt::format("{},{},{},{}\n", num(r.cycles), k, num(r.stick_zones[k].first), num(r.stick_zones[k].second));
+  return s;
+}
+
 // Long format: one row per record and cell, then the asymptote as rows with cycles = inf (its slip is left empty:
 // the asymptote is a limit, not a cycle). Rows of record k are rows k·n ... k·n + n − 1 after the header.
 std::string profiles_csv(const Scene& scene, const NormalResult& n, const WearStage& w) {
@@ -166,20 +184,40 @@ set grid
       lo = std::min(lo, w.asymptote.extent.first), hi = std::max(hi, w.asymptote.extent.second);
     const double pad = 0.08 * (hi - lo);
     s += fmt::format("set yrange [{}:{}]\n", (lo - pad) * 1e3, (hi + pad) * 1e3);
-    s += fmt::format("set title \"{}: stick zone and contact extent against cycles\" noenhanced\n", scene.name);
+    s += fmt::format("set title \"{}: stick zone{} and contact extent against cycles\" noenhanced\n", scene.name,
+                     most_stick_zones(w) > 1 ? "s" : "");
     s += "set ylabel 'x (mm)'\n";
-    stick = fmt::format(
-        "plot {0} with lines lw 9 lc rgb '#d9d9d9' title 'initial stick zone', "
-        "{1} with lines lw 9 lc rgb '#d9d9d9' notitle, "
-        "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($5*1e3) with linespoints pt 7 ps 0.7 lw 1.5 "
-        "lc rgb '#1f77b4' title 'stick zone, left end', "
-        "'' skip 1 using ($1 > 0 ? $1 : NaN):($6*1e3) with linespoints pt 5 ps 0.7 lw 1.5 lc rgb '#d62728' "
-        "title 'stick zone, right end', "
-        "'' skip 1 using ($1 > 0 ? $1 : NaN):($7*1e3) with linespoints pt 6 ps 0.7 lw 1 lc rgb '#6baed6' "
-        "title 'contact, left end', "
+    const std::size_t zones = most_stick_zones(w);
+    if (zones <= 1) {
+      stick = fmt::format(
+          "plot {0} with lines lw 9 lc rgb '#d9d9d9' title 'initial stick zone', "
+          "{1} with lines lw 9 lc rgb '#d9d9d9' notitle, "
+          "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($5*1e3) with linespoints pt 7 ps 0.7 lw 1.5 "
+          "lc rgb '#1f77b4' title 'stick zone, left end', "
+          "'' skip 1 using ($1 > 0 ? $1 : NaN):($6*1e3) with linespoints pt 5 ps 0.7 lw 1.5 lc rgb '#d62728' "
+          "title 'stick zone, right end', ",
+          num(s0->first * 1e3), num(s0->second * 1e3));
+    } else {
+      // Each zone's ends (wear_stick_zones.csv, zone by zone), the initial zones as grey bands.
+      stick = "plot ";
+      const auto& first = w.records.front().stick_zones;
+      for (std::size_t k = 0; k < first.size(); ++k)
+        stick += fmt::format("{0} with lines lw 9 lc rgb '#d9d9d9' {2}, {1} with lines lw 9 lc rgb '#d9d9d9' notitle, ",
+                             num(first[k].first * 1e3), num(first[k].second * 1e3),
+                             k == 0 ? "title 'initial stick zones'" : "notitle");
+      for (std::size_t k = 0; k < zones; ++k)
+        stick += fmt::format(
+            "'wear_stick_zones.csv' skip 1 using ($2 == {0} && $1 > 0 ? $1 : NaN):($3*1e3) with linespoints pt 7 "
+            "ps 0.7 lw 1.5 lc rgb '#1f77b4' {1}, '' skip 1 using ($2 == {0} && $1 > 0 ? $1 : NaN):($4*1e3) with "
+            "linespoints pt 5 ps 0.7 lw 1.5 lc rgb '#d62728' {2}, ",
+            k, k == 0 ? "title 'stick zones, left ends'" : "notitle",
+            k == 0 ? "title 'stick zones, right ends'" : "notitle");
+    }
+    stick +=
+        "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($7*1e3) with linespoints pt 6 ps 0.7 lw 1 "
+        "lc rgb '#6baed6' title 'contact, left end', "
         "'' skip 1 using ($1 > 0 ? $1 : NaN):($8*1e3) with linespoints pt 4 ps 0.7 lw 1 lc rgb '#fc9272' "
-        "title 'contact, right end'",
-        num(s0->first * 1e3), num(s0->second * 1e3));
+        "title 'contact, right end'";
     // The worn extent of the asymptote, where the contact tends (its worn zones touch at zero pressure there, so
     // near the limit the contact's ends move by a few cells from record to record).
     if (w.asymptote.unavailable.empty())
@@ -423,7 +461,10 @@ void WearRun::record(const std::vector<double>& state, double cycles) {
     rec.max_depth = std::max(rec.max_depth, state[i]);
     rec.p_max = std::max(rec.p_max, r.p[i]);
   }
-  if (r.has_stick) rec.stick_zone = Interval{r.stick_left, r.stick_right};
+  if (r.has_stick) {
+    rec.stick_zone = Interval{r.stick_left, r.stick_right};
+    rec.stick_zones = r.stick_zones.empty() ? std::vector<Interval>{*rec.stick_zone} : r.stick_zones;
+  }
   std::vector<double> g0w(n);
   for (int i = 0; i < n; ++i) g0w[i] = model_.g0[i] + state[i];
   const auto zones = locate_zones(model_.grid, r.p, g0w);
@@ -703,6 +744,8 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
       {"fraction_of_asymptote", w.asymptote.unavailable.empty() ? json(last.fraction) : json(nullptr)},
       {"stick_zone_initial", interval(w.records.front().stick_zone)},
       {"stick_zone_final", interval(last.stick_zone)},
+      {"stick_zones_initial", w.records.front().stick_zones},
+      {"stick_zones_final", last.stick_zones},
       {"contact_final", {last.contact.first, last.contact.second}},
       {"touching_final", {last.touching.first, last.touching.second}},
       {"steps", w.steps},
@@ -760,6 +803,10 @@ void write_wear(const Scene& scene, const NormalResult& normal, const CycleStage
   out.write("wear_history.csv", wear_history_csv(w));
   out.write("profiles.csv", profiles_csv(scene, normal, w));
   written.tables.insert(written.tables.end(), {"wear_history.csv", "profiles.csv"});
+  if (most_stick_zones(w) > 1) {
+    out.write("wear_stick_zones.csv", wear_stick_zones_csv(w));
+    written.tables.push_back("wear_stick_zones.csv");
+  }
   if (!scene.plots) return;
   out.write("wear.gp", wear_plot_script(scene, normal, cycle, w));
   if (!run_gnuplot(out.path(""), "wear.gp")) return;

@@ -60,7 +60,8 @@ struct WearRecord {
   double worn_area = 0.0, max_depth = 0.0, p_max = 0.0;
   double Q_max = 0.0;  // the tangential load at the top of the cycle (N/m): the scene's under force control, the one
                        // the prescribed δ gives on the worn profile under displacement control
-  std::optional<Interval> stick_zone;
+  std::optional<Interval> stick_zone;    // the stick zones' hull
+  std::vector<Interval> stick_zones;     // every stick zone, left to right (one: the hull; none: empty)
   Interval contact{0.0, 0.0};   // the outer ends of the loaded contact
   Interval touching{0.0, 0.0};  // ... and of where the bodies touch, worn flats without load included
   double fraction = 0.0;  // worn area over the asymptote's (0 without one)

@@ -1,5 +1,6 @@
 #include "python/tables.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -136,6 +137,28 @@ Table wear_history_table(const WearStage& w) {
     for (const WearRecord& x : r) block.push_back(x.block);
     t.add_integers("block", "the block of load.blocks the record is under (from 0)", block);
   }
+  return t;
+}
+
+// wear_stick_zones.csv: zone by zone, one row per record holding that zone (written with several stick zones).
+Table wear_stick_zones_table(const WearStage& w) {
+  Table t("wear_stick_zones.csv", "one row per stick zone and record, zone by zone (zones from 0, left to right)");
+  std::size_t most = 0;
+  for (const WearRecord& r : w.records) most = std::max(most, r.stick_zones.size());
+  std::vector<double> cycles, left, right;
+  std::vector<long> zone;
+  for (std::size_t k = 0; k < most; ++k)
+    for (const WearRecord& r : w.records)
+      if (k < r.stick_zones.size()) {
+        cycles.push_back(r.cycles);
+        zone.push_back(long(k));
+        left.push_back(r.stick_zones[k].first);
+        right.push_back(r.stick_zones[k].second);
+      }
+  t.add("cycles", "1", "cycles at the record", cycles);
+  t.add_integers("zone", "the stick zone, from 0, left to right in its record", zone);
+  t.add("stick_left", "m", "left end of the stick zone", left);
+  t.add("stick_right", "m", "right end of the stick zone", right);
   return t;
 }
 
@@ -337,6 +360,9 @@ std::map<std::string, Table> result_tables(const Scene& scene, const RunResult& 
   if (r.wear) {
     tables.emplace("wear_history", wear_history_table(*r.wear));
     tables.emplace("profiles", profiles_table(scene, r.normal, *r.wear));
+    std::size_t most = 0;
+    for (const WearRecord& x : r.wear->records) most = std::max(most, x.stick_zones.size());
+    if (most > 1) tables.emplace("wear_stick_zones", wear_stick_zones_table(*r.wear));
   }
   if (!r.stress_maps.empty()) {
     const std::vector<StressMap> last = last_record(r.stress_maps);
@@ -362,6 +388,7 @@ const std::vector<std::pair<std::string, std::string>>& table_names() {
       {"loop", "loop.csv: the fretting loop (P, Q N/m, delta m)"},
       {"wear_history", "wear_history.csv: one row per wear record (cycles, worn_area m^2, max_depth m, ...)"},
       {"profiles", "profiles.csv: the worn profile per record and cell (wear m, p Pa, slip m)"},
+      {"wear_stick_zones", "wear_stick_zones.csv: each stick zone's ends per record, with several zones (m)"},
       {"stress", "stress.csv: stresses of the last state per phase and map point (Pa)"},
       {"surface_stress", "surface_stress.csv: σxx along the surface per phase (Pa)"},
       {"fatigue", "fatigue.csv: SWT per state and map point (Pa), its critical plane (deg)"},

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace fretwear::wear {
@@ -20,6 +21,9 @@ struct CycleResponse {
   const std::vector<double>& slip_if_touching() const { return s_touching.empty() ? s : s_touching; }
   double stick_left = 0.0, stick_right = 0.0;  // the stick zone (m); equal when there is none
   bool has_stick = false;
+  // Every stick zone, left to right (m), when the contact has several: [stick_left, stick_right] is their hull.
+  // Empty means the one zone [stick_left, stick_right] (or none).
+  std::vector<std::pair<double, double>> stick_zones;
 };
 
 class ContactResponse {

@@ -229,5 +229,16 @@ TEST_CASE("two asperities: the limit is a complete contact over both stick zones
     REQUIRE(rec.stick_zone);
     CHECK(std::abs(rec.stick_zone->first - first.stick_zone->first) < r.model.grid.h());
     CHECK(std::abs(rec.stick_zone->second - first.stick_zone->second) < r.model.grid.h());
+    // Each record holds both zones, one under each asperity, mirrored, their hull the span above; each stands still.
+    REQUIRE(rec.stick_zones.size() == 2);
+    CHECK(rec.stick_zones[0].first == rec.stick_zone->first);
+    CHECK(rec.stick_zones[1].second == rec.stick_zone->second);
+    CHECK(rec.stick_zones[0].second < -0.5e-3);
+    CHECK(rec.stick_zones[1].first > 0.5e-3);
+    CHECK(std::abs(rec.stick_zones[0].second + rec.stick_zones[1].first) < r.model.grid.h());
+    for (std::size_t k = 0; k < 2; ++k) {
+      CHECK(std::abs(rec.stick_zones[k].first - first.stick_zones[k].first) < r.model.grid.h());
+      CHECK(std::abs(rec.stick_zones[k].second - first.stick_zones[k].second) < r.model.grid.h());
+    }
   }
 }

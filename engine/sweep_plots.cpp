@@ -41,10 +41,18 @@ double total_width(const json& zones) {
   return w;
 }
 
-// The colour map's value of a run: the worn area when the scene wears; else the stick zones' share of the contact
-// zones, zone by zone (0 in gross slip; the gaps between several zones count in neither).
-double map_value(const json& s, bool wears) {
-  if (wears) return value_at(s, "wear.worn_area").is_number() ? value_at(s, "wear.worn_area").get<double>() : NAN;
+// What the colour map shows: the worn area when the scene wears; else, with a load cycle, the stick zones' share of
+// the contact zones, zone by zone (0 in gross slip; the gaps between several zones count in neither); else (the
+// normal contact alone) the peak pressure.
+enum class MapQuantity { worn_area, stick_share, p_max };
+
+double map_value(const json& s, MapQuantity q) {
+  auto number_at = [&s](const char* key) {
+    const json v = value_at(s, key);
+    return v.is_number() ? v.get<double>() : NAN;
+  };
+  if (q == MapQuantity::worn_area) return number_at("wear.worn_area");
+  if (q == MapQuantity::p_max) return number_at("contact.p_max");
   const json stick = value_at(s, "cycle.stick_zones"), zones = value_at(s, "contact.zones");
   if (!zones.is_array() || zones.empty()) return NAN;
   if (!stick.is_array()) return 0.0;
@@ -159,13 +167,17 @@ void write_sweep_maps(const SweepResult& result, const std::string& scene_name, 
   const Axis y = two ? axis_of(variations[1]) : Axis{};
   const std::size_t n0 = variations[0].values.size(), n1 = two ? variations[1].values.size() : 1;
 
+  MapQuantity quantity = wears ? MapQuantity::worn_area : MapQuantity::p_max;
+  for (const SweepRun& run : result.runs)
+    if (!wears && run.status == 0 && run.summary.contains("cycle")) quantity = MapQuantity::stick_share;
+
   // One row per cell: the runs whose further varied keys (beyond the second) take their first value.
   std::string dat;
   bool regimes = false;
   for (std::size_t k = 0; k < std::min(result.runs.size(), n0 * n1); ++k) {
     const SweepRun& run = result.runs[k];
     const std::size_t i = k % n0, j = k / n0;
-    const double value = run.status == 0 ? map_value(run.summary, wears) : NAN;
+    const double value = run.status == 0 ? map_value(run.summary, quantity) : NAN;
     const json regime = run.status == 0 ? value_at(run.summary, "cycle.regime") : json(nullptr);
     int rgb = kNoRegimeRgb;
     for (const RegimeStyle& r : kRegimes)
@@ -193,7 +205,9 @@ void write_sweep_maps(const SweepResult& result, const std::string& scene_name, 
   }
 
   // The colour map, in a perceptual palette (viridis: Smith and van der Walt 2015); over one key, a line.
-  const std::string what = wears ? "worn area (m²)" : "stick zones / contact zones, in width";
+  const std::string what = quantity == MapQuantity::worn_area     ? "worn area (m²)"
+                           : quantity == MapQuantity::stick_share ? "stick zones / contact zones, in width"
+                                                                  : "peak pressure p_max (Pa)";
   gp += fmt::format("reset\nset grid\nset title \"{}: {}\" noenhanced\n", scene_name, what);
   if (two) {
     gp += frame + fmt::format("set cblabel '{}'\nset style fill solid 1.0 noborder\n", what);

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -142,4 +143,25 @@ TEST_CASE("a sweep reads a measured profile's file beside its scene, from any wo
   int rows = 0;
   while (std::getline(table, line)) ++rows;
   CHECK(rows == 3);  // the header and the two runs
+}
+
+TEST_CASE("a sweep of the normal contact alone maps its peak pressure, and gnuplot has nothing to complain of") {
+  // Without a load cycle there is no stick zone to share the contact: the map shows p_max (a stick share of 0 for
+  // every run left gnuplot an empty range, and a gnuplot.log in the folder).
+  Scratch s;
+  json scene = {{"name", "normal"},
+                {"materials", {{"both", {{"E", 2e11}, {"nu", 0.3}}}}},
+                {"profile", {{"type", "cylinder"}, {"R", 0.01}}},
+                {"load", {{"P", 1e5}}},
+                {"grid", {{"cells", 256}}},
+                {"output", {{"dir", (s.work / "out").string()}, {"plots", true}}}};
+  const fs::path file = s.write("normal.json", scene.dump());
+  const Outcome r = s.fretwear({"sweep", file.string(), "--vary", "load.P=5e4,1e5,2e5", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const fs::path dir = s.work / "out" / "sweep";
+  std::ifstream gp(dir / "sweep.gp");
+  const std::string script((std::istreambuf_iterator<char>(gp)), std::istreambuf_iterator<char>());
+  CHECK(script.find("peak pressure p_max (Pa)") != std::string::npos);
+  CHECK(fs::exists(dir / "sweep_map.png"));
+  CHECK_FALSE(fs::exists(dir / "gnuplot.log"));
 }

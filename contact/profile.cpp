@@ -270,6 +270,15 @@ constexpr std::pair<Interpolation, const char*> kInterpolationWords[] = {{Interp
                                                                          {Interpolation::makima, "makima"},
                                                                          {Interpolation::cubic, "cubic"}};
 
+// A Boost.Math interpolant of the table's points (pchip, makima: both take x and h and give value and prime),
+// held by the curve's value and slope.
+template <class Interpolant>
+void hold(TableInterpolant& curve, const ProfileSpec& s) {
+  auto f = std::make_shared<const Interpolant>(std::vector<double>(s.x), std::vector<double>(s.h));
+  curve.value = [f](double t) { return (*f)(t); };
+  curve.slope = [f](double t) { return f->prime(t); };
+}
+
 // The curve of a table read with a cubic interpolant; throws InputError when the table does not suit it.
 std::shared_ptr<const TableInterpolant> make_curve(const ProfileSpec& s) {
   const std::size_t n = s.x.size();
@@ -282,20 +291,12 @@ std::shared_ptr<const TableInterpolant> make_curve(const ProfileSpec& s) {
   switch (s.interpolation) {
     case Interpolation::linear:
       break;
-    case Interpolation::pchip: {
-      using Pchip = boost::math::interpolators::pchip<std::vector<double>>;
-      auto f = std::make_shared<const Pchip>(std::vector<double>(s.x), std::vector<double>(s.h));
-      curve->value = [f](double t) { return (*f)(t); };
-      curve->slope = [f](double t) { return f->prime(t); };
+    case Interpolation::pchip:
+      hold<boost::math::interpolators::pchip<std::vector<double>>>(*curve, s);
       break;
-    }
-    case Interpolation::makima: {
-      using Makima = boost::math::interpolators::makima<std::vector<double>>;
-      auto f = std::make_shared<const Makima>(std::vector<double>(s.x), std::vector<double>(s.h));
-      curve->value = [f](double t) { return (*f)(t); };
-      curve->slope = [f](double t) { return f->prime(t); };
+    case Interpolation::makima:
+      hold<boost::math::interpolators::makima<std::vector<double>>>(*curve, s);
       break;
-    }
     case Interpolation::cubic: {
       if (!uniformly_spaced(s.x))
         throw InputError("profile: cubic interpolation needs uniformly spaced x (a cardinal B-spline); use \"makima\" "

@@ -69,15 +69,21 @@ Stress line_mean(const std::vector<double>& ys, const std::vector<Stress>& colum
     return Stress{a.xx + t * (b.xx - a.xx), a.yy + t * (b.yy - a.yy), a.xy + t * (b.xy - a.xy)};
   };
   if (ell <= 0.0 || ys.size() == 1) return at(d);
-  std::vector<double> y{0.0};
-  std::vector<Stress> v{at(d)};
-  for (std::size_t j = 0; j < ys.size(); ++j)
-    if (ys[j] > d && ys[j] < d + ell) y.push_back(ys[j] - d), v.push_back(column[j]);
-  y.push_back(ell);
-  v.push_back(at(d + ell));
-  std::vector<double> xx, yy, xy;
-  for (const Stress& s : v) xx.push_back(s.xx), yy.push_back(s.yy), xy.push_back(s.xy);
-  return {line_average(y, xx, ell), line_average(y, yy, ell), line_average(y, xy, ell)};
+  // Trapezoids from d through the samples inside the line to d + ℓ, as line_average() sums them (contact/
+  // fatigue_life.hpp), without building the line's samples: this runs for every point of every layer.
+  Stress sum{}, v0 = at(d);
+  double y0 = 0.0;
+  auto segment = [&](double y1, const Stress& v1) {
+    const double w = y1 - y0, f = (y1 - y0) / (y1 - y0);
+    sum.xx += 0.5 * (v0.xx + (v0.xx + (v1.xx - v0.xx) * f)) * w;
+    sum.yy += 0.5 * (v0.yy + (v0.yy + (v1.yy - v0.yy) * f)) * w;
+    sum.xy += 0.5 * (v0.xy + (v0.xy + (v1.xy - v0.xy) * f)) * w;
+    y0 = y1, v0 = v1;
+  };
+  const auto first = std::upper_bound(ys.begin(), ys.end(), d);
+  for (auto it = first; it != ys.end() && *it < d + ell; ++it) segment(*it - d, column[std::size_t(it - ys.begin())]);
+  segment(ell, at(d + ell));
+  return {sum.xx / ell, sum.yy / ell, sum.xy / ell};
 }
 
 // ys: the depths the stresses are sampled at, down to y.back() + ℓ.

@@ -266,6 +266,13 @@ cycle it needs: effect is "normal", "tangential", "wear", "stress", "crack" or "
 (m, N/m, Pa). Raises ValueError for another effect.
 )doc";
 
+// A table's column names, in the CSV's order.
+std::vector<std::string> column_names(const Table& t) {
+  std::vector<std::string> names;
+  for (const Column& c : t.columns()) names.push_back(c.name);
+  return names;
+}
+
 }  // namespace
 }  // namespace fretwear::python
 
@@ -321,24 +328,11 @@ table.units maps each to its unit; pandas.DataFrame(table.to_dict()) makes a dat
       .def("__dir__",
            [](const Table& t) {
              std::vector<std::string> names{"columns", "file", "keys", "rows", "to_dict", "units"};
-             for (const Column& c : t.columns()) names.push_back(c.name);
+             for (std::string& c : column_names(t)) names.push_back(std::move(c));
              return names;
            })
-      .def("keys",
-           [](const Table& t) {
-             std::vector<std::string> names;
-             for (const Column& c : t.columns()) names.push_back(c.name);
-             return names;
-           },
-           "the column names, in the CSV's order")
-      .def_property_readonly(
-          "columns",
-          [](const Table& t) {
-            std::vector<std::string> names;
-            for (const Column& c : t.columns()) names.push_back(c.name);
-            return names;
-          },
-          "the column names, in the CSV's order")
+      .def("keys", &column_names, "the column names, in the CSV's order")
+      .def_property_readonly("columns", &column_names, "the column names, in the CSV's order")
       .def_property_readonly(
           "units",
           [](const Table& t) {

@@ -6,16 +6,16 @@
 #include <fftw3.h>
 
 namespace fretwear {
-namespace {
-// FFTW's planner is not thread-safe; execution of distinct plans on distinct buffers is.
-// FFTW_MEASURE plans cost 0.4 s (n = 1024) to 7 s (n = 65536) and bought no measurable speed on a shared core
-// (docs/PERFORMANCE.md); the grid of a scene changes with every convergence level, so plans are estimated.
-constexpr unsigned kPlannerFlags = FFTW_ESTIMATE;
 
-std::mutex& planner_mutex() {
+std::mutex& fftw_planner_mutex() {
   static std::mutex m;
   return m;
 }
+
+namespace {
+// FFTW_MEASURE plans cost 0.4 s (n = 1024) to 7 s (n = 65536) and bought no measurable speed on a shared core
+// (docs/PERFORMANCE.md); the grid of a scene changes with every convergence level, so plans are estimated.
+constexpr unsigned kPlannerFlags = FFTW_ESTIMATE;
 }  // namespace
 
 struct ToeplitzFFT::Plans {
@@ -25,7 +25,7 @@ struct ToeplitzFFT::Plans {
   fftw_plan forward = nullptr, inverse = nullptr;
 
   explicit Plans(int m_) : m(m_) {
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(fftw_planner_mutex());
     // In place: the real input shares the spectrum's storage, which halves the memory a product streams through.
     spec = fftw_alloc_complex(m / 2 + 1);
     real = reinterpret_cast<double*>(spec);
@@ -33,7 +33,7 @@ struct ToeplitzFFT::Plans {
     inverse = fftw_plan_dft_c2r_1d(m, spec, real, kPlannerFlags);
   }
   ~Plans() {
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(fftw_planner_mutex());
     fftw_destroy_plan(forward);
     fftw_destroy_plan(inverse);
     fftw_free(spec);

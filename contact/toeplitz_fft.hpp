@@ -7,10 +7,15 @@
 
 #include <complex>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
 namespace fretwear {
+
+// FFTW's planner is not thread-safe (its execution of distinct plans on distinct buffers is): every plan of the
+// program is made and destroyed under this lock.
+std::mutex& fftw_planner_mutex();
 
 class ToeplitzFFT {
  public:

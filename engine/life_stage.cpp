@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "contact/centre_stress.hpp"
 #include "contact/fatigue_measures.hpp"
 #include "contact/subsurface_stress.hpp"
 #include "engine/crack_stage.hpp"
@@ -28,18 +29,16 @@ struct State {
   std::vector<double> w_specimen;  // m per cell
 };
 
+// The states' loads are the stress stage's records (record_phases), with the specimen's share of each record's wear.
 std::vector<State> life_states(const Scene& scene, const NormalResult& normal, const CycleStage& cycle,
                                const WearStage* wear) {
   std::vector<State> states;
-  if (!wear) {
-    states.push_back({0.0, cycle_phases(scene, normal, &cycle),
-                      std::vector<double>(normal.state.p.size(), 0.0)});
-    return states;
-  }
-  const double share = 1.0 - scene.wear->pad_fraction;
-  for (const WearRecord& rec : wear->records) {
-    State s{rec.cycles, cycle_phases(scene, rec.p, &rec.q), rec.w};
-    for (double& w : s.w_specimen) w *= share;
+  const std::vector<RecordPhases> records = record_phases(scene, normal, &cycle, wear);
+  const double share = wear ? 1.0 - scene.wear->pad_fraction : 0.0;
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    State s{records[k].cycles, records[k].phases, std::vector<double>(normal.state.p.size(), 0.0)};
+    if (wear)
+      for (std::size_t i = 0; i < s.w_specimen.size(); ++i) s.w_specimen[i] = share * wear->records[k].w[i];
     states.push_back(std::move(s));
   }
   return states;
@@ -86,14 +85,17 @@ Stress line_mean(const std::vector<double>& ys, const std::vector<Stress>& colum
   return {sum.xx / ell, sum.yy / ell, sum.xy / ell};
 }
 
-// ys: the depths the stresses are sampled at, down to y.back() + ℓ.
-SwtLayer swt_layer(const Grid& grid, const State& state, const std::vector<double>& x, const std::vector<double>& y,
-                   const std::vector<double>& ys, double ell, const Material& specimen, PlaneState plane) {
+// cells: the grid cells whose centres are x; stresses: the state's top and bottom stresses at every cell centre and
+// at the depths ys (CentreStresses, rows of grid.n), down to y.back() + ℓ.
+SwtLayer swt_layer(const Grid& grid, const std::vector<int>& cells, const std::vector<double>& x,
+                   const std::vector<double>& y, const std::vector<double>& ys, const std::vector<Stress> (&stresses)[2],
+                   double ell, const Material& specimen, PlaneState plane) {
   SwtLayer layer{x, y, std::vector<SwtResult>(x.size() * y.size())};
-  const SurfaceTractions top{grid, state.phases[0].p, state.phases[0].q, state.phases[0].sigma_bulk};
-  const SurfaceTractions bottom{grid, state.phases[1].p, state.phases[1].q, state.phases[1].sigma_bulk};
+  const std::size_t n = std::size_t(grid.n);
+  std::vector<Stress> a(ys.size()), b(ys.size());
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const std::vector<Stress> a = stress_along_depth(top, x[i], ys), b = stress_along_depth(bottom, x[i], ys);
+    for (std::size_t k = 0; k < ys.size(); ++k)
+      a[k] = stresses[0][k * n + std::size_t(cells[i])], b[k] = stresses[1][k * n + std::size_t(cells[i])];
     for (std::size_t j = 0; j < y.size(); ++j) {
       const Stress pair[2] = {line_mean(ys, a, y[j], ell), line_mean(ys, b, y[j], ell)};
       layer.points[j * x.size() + i] = swt_critical_plane(pair, specimen, plane);
@@ -123,8 +125,10 @@ struct Initiation {
   std::size_t state = 0;
 };
 
-// The layer's surface points x, the depths y of its SWT_ℓ, and the depths ys of the stresses averaged over ℓ.
+// The layer's surface points x (the centres of the grid's cells `cells`), the depths y of its SWT_ℓ, and the depths
+// ys of the stresses averaged over ℓ.
 struct LayerAxes {
+  std::vector<int> cells;
   std::vector<double> x, y, ys;
 };
 
@@ -133,14 +137,17 @@ struct LayerAxes {
 // the stresses of a contact edge vary fastest (like r^(−1/2) at a singular one); the stresses to ℓ further down.
 LayerAxes layer_axes(const Grid& grid, const NormalResult& normal, const std::vector<State>& states, double ell) {
   const double xl = normal.zones.front().left.x, xr = normal.zones.back().right.x, half = 0.5 * (xr - xl);
-  std::vector<double> x;
+  std::vector<int> cells;
   for (int i = 0; i < grid.n; ++i)
-    if (grid.x(i) >= xl - 0.5 * half && grid.x(i) <= xr + 0.5 * half) x.push_back(grid.x(i));
-  if (x.size() > std::size_t(kMaxLayerPoints)) {
-    std::vector<double> thinned;
-    for (int k = 0; k < kMaxLayerPoints; ++k) thinned.push_back(x[std::size_t(k) * (x.size() - 1) / (kMaxLayerPoints - 1)]);
-    x = std::move(thinned);
+    if (grid.x(i) >= xl - 0.5 * half && grid.x(i) <= xr + 0.5 * half) cells.push_back(i);
+  if (cells.size() > std::size_t(kMaxLayerPoints)) {
+    std::vector<int> thinned;
+    for (int k = 0; k < kMaxLayerPoints; ++k)
+      thinned.push_back(cells[std::size_t(k) * (cells.size() - 1) / (kMaxLayerPoints - 1)]);
+    cells = std::move(thinned);
   }
+  std::vector<double> x;
+  for (int i : cells) x.push_back(grid.x(i));
   double w_max = 0.0;
   for (const State& s : states)
     for (double w : s.w_specimen) w_max = std::max(w_max, w);
@@ -151,7 +158,7 @@ LayerAxes layer_axes(const Grid& grid, const NormalResult& normal, const std::ve
       for (int j = 1; j <= n; ++j) v.push_back(to * double(j * j) / double(n * n));
     return v;
   };
-  LayerAxes axes{x, graded(depth, kLayerDepths), {}};
+  LayerAxes axes{cells, x, graded(depth, kLayerDepths), {}};
   axes.ys = ell > 0.0 ? graded(depth + ell, kStressDepths) : axes.y;
   return axes;
 }
@@ -164,8 +171,15 @@ Initiation initiate(const Scene& scene, const Grid& grid, const NormalResult& no
   const LayerAxes axes = layer_axes(grid, normal, states, ell);
   const std::vector<double>& x = axes.x;
   const std::vector<double>& y = axes.y;
+  // The stresses of every state at every cell centre and depth ys, by FFT: the kernels' spectra once for all states.
+  const CentreStresses centre_stresses(grid, axes.ys);
   std::vector<SwtLayer> layers;
-  for (const State& s : states) layers.push_back(swt_layer(grid, s, x, y, axes.ys, ell, scene.specimen, scene.plane));
+  for (const State& s : states) {
+    const std::vector<Stress> stresses[2] = {
+        centre_stresses(SurfaceTractions{grid, s.phases[0].p, s.phases[0].q, s.phases[0].sigma_bulk}),
+        centre_stresses(SurfaceTractions{grid, s.phases[1].p, s.phases[1].q, s.phases[1].sigma_bulk})};
+    layers.push_back(swt_layer(grid, axes.cells, x, y, axes.ys, stresses, ell, scene.specimen, scene.plane));
+  }
   // The damage rate (per cycle) at column i, depth d below the surface of state j.
   auto rate = [&](std::size_t j, std::size_t i, double d) {
     const double n = initiation_life(k, swt_line(layers[j], i, d));

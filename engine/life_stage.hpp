@@ -8,7 +8,10 @@
 // 1/N_i(SWT_ℓ(x, d)), SWT_ℓ the SWT of the stress history averaged over the line [d, d + ℓ] below it (Taylor's line
 // method, which averages stress: Taylor 2007; the point's own when ℓ = 0). Averaging the stresses, not the SWT, is
 // what converges at a square-root singular edge: there σ ∝ r^(−1/2), whose mean over the line is finite, while
-// SWT ∝ 1/r, whose mean grows like ln(ℓ/h) as the grid is refined. Damage is carried by material
+// SWT ∝ 1/r, whose mean grows like ln(ℓ/h) as the grid is refined. The layer's stresses are the convolution rows of
+// contact/centre_stress.hpp at every cell centre (about 5 ms a state at 1024 cells), not the stress stage's maps,
+// which sample too few points across and none graded in depth (docs/METHODS.md, "Fatigue life"); the states' loads
+// are the stress stage's records (record_phases). Damage is carried by material
 // points fixed in the specimen: the specimen's wear w_s(x) = (1 − pad_fraction) w(x) (both bodies share one scar,
 // split by pad_fraction) brings a point at original depth y₀ to depth y₀ − w_s, and removes it past the surface,
 // taking its damage with it. The crack starts at the surface point x whose material first reaches D = 1:

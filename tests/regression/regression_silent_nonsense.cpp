@@ -121,3 +121,20 @@ TEST_CASE("a slip zone narrower than the grid resolves warns, and so does a worn
     "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 1024},
     "effects": {"wear": {"k": 1e-12, "cycles": 1e3}}, "output": {"plots": false}})").empty());
 }
+
+TEST_CASE("gross-slip wear with the specimen wearing says its scar is the shared profile's, and only then") {
+  // examples/gross_slip_displacement_wear.json, shortened: U = 24 µm each way, cells of 1.2 µm.
+  const std::string gross = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
+    "load": {"P": 18500, "control": "displacement", "delta": 25e-6},
+    "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
+    "output": {"plots": false}, "effects": {"wear": {"k": 5e-14, "cycles": 2000, "pad_fraction": )";
+  CHECK(warning_codes(gross + "0.5}}}") == std::set<std::string>{"gross_slip_shared_scar"});
+  // Only the pad wears: its frame is the one computed.
+  CHECK(warning_codes(gross + "1.0}}}").empty());
+  // Partial slip (δ = 1 µm): the frames differ by the slip alone.
+  const std::string partial = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
+    "load": {"P": 18500, "control": "displacement", "delta": 1e-6},
+    "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
+    "output": {"plots": false}, "effects": {"wear": {"k": 5e-14, "cycles": 2000}}})";
+  CHECK(warning_codes(partial).count("gross_slip_shared_scar") == 0);
+}

@@ -26,10 +26,12 @@ double wrap(double theta) {
 }
 }  // namespace
 
-double normal_stress(const Stress& s, double theta) {
-  const double c = std::cos(theta), n = std::sin(theta);
-  return s.xx * c * c + s.yy * n * n + 2.0 * s.xy * n * c;
-}
+namespace {
+// σ_n on the plane of normal (c, n) = (cos θ, sin θ).
+double normal_stress_on(const Stress& s, double c, double n) { return s.xx * c * c + s.yy * n * n + 2.0 * s.xy * n * c; }
+}  // namespace
+
+double normal_stress(const Stress& s, double theta) { return normal_stress_on(s, std::cos(theta), std::sin(theta)); }
 
 double normal_strain(const Stress& s, double theta, const Material& m, PlaneState plane) {
   return ((1.0 + m.nu) * normal_stress(s, theta) - m.nu * trace(s, m, plane)) / m.E;
@@ -40,12 +42,15 @@ struct PlaneValue {
   double swt, sigma_n_max, delta_eps_n;
 };
 
+// The plane's cosine and sine once for every state: the scan evaluates this some 200 times per point.
 PlaneValue on_plane(std::span<const Stress> states, double theta, const Material& m, PlaneState plane) {
   assert(states.size() >= 2);
+  const double c = std::cos(theta), n = std::sin(theta);
   double s_max = -INFINITY, e_max = -INFINITY, e_min = INFINITY;
   for (const Stress& s : states) {
-    s_max = std::max(s_max, normal_stress(s, theta));
-    const double e = normal_strain(s, theta, m, plane);
+    const double sn = normal_stress_on(s, c, n);
+    s_max = std::max(s_max, sn);
+    const double e = ((1.0 + m.nu) * sn - m.nu * trace(s, m, plane)) / m.E;  // normal_strain()
     e_max = std::max(e_max, e), e_min = std::min(e_min, e);
   }
   const double de = e_max - e_min;

@@ -232,7 +232,8 @@ json record_json(const WearRecord& r) {
           {"w", blob(r.w)},
           {"p", blob(r.p)},
           {"s", blob(r.s)},
-          {"q", blob(r.q)}};
+          {"q", blob(r.q)},
+          {"block", r.block}};
 }
 
 WearRecord record_from(const json& j) {
@@ -253,6 +254,7 @@ WearRecord record_from(const json& j) {
   r.p = unblob(j.at("p"));
   r.s = unblob(j.at("s"));
   r.q = unblob(j.at("q"));
+  r.block = j.value("block", -1);
   return r;
 }
 

@@ -10,6 +10,8 @@
 //     w, records                                                       the state and what was recorded
 //     contact                                                          WearContact::save()
 //     stepper_state                                                    one of the stepper schemas below
+//     blocks (under load.blocks only)   the block the run stands in, earlier_records (how many of `records` the
+//                                       blocks before it made), and the stage's counts and settings so far
 #pragma once
 
 #include <cstdint>

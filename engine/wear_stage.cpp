@@ -388,14 +388,22 @@ std::vector<double> record_times(const WearEffect& w) {
 
 // One wear run under way: the worn state w on the contact, driven by a stepper through the record times, recorded
 // into the stage, and steered by the control at every step boundary (progress, a stop, checkpoints).
+// Where a run under load.blocks stands, for its checkpoints: the block, the records of the blocks before it, and the
+// stage's counts and settings so far (run_blocks() says which).
+struct BlockProgress {
+  int block = 0;
+  const std::vector<WearRecord>* earlier = nullptr;
+  json values;
+};
+
 class WearRun {
  public:
   WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage)
       : WearRun(scene, model, control, contact, stage, record_times(*scene.wear), std::vector<double>(model.grid.n, 0.0),
-                -1) {}
+                nullptr) {}
   // One block of load.blocks: from the worn state w at times.front() through the record times, under its load.
   WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage,
-          std::vector<double> times, std::vector<double> w, int block)
+          std::vector<double> times, std::vector<double> w, const BlockProgress* block)
       : scene_(scene),
         effect_(*scene.wear),
         model_(model),
@@ -404,7 +412,8 @@ class WearRun {
         stage_(stage),
         times_(std::move(times)),
         w_(std::move(w)),
-        block_(block) {
+        block_(block ? block->block : -1),
+        blocks_(block) {
     stage_.cycles_reached = times_.back();  // until a stop says otherwise
   }
   const std::vector<double>& state() const { return w_; }
@@ -440,6 +449,7 @@ class WearRun {
   const std::vector<double> times_;
   std::vector<double> w_;
   int block_;
+  const BlockProgress* blocks_;
   clock::time_point last_checkpoint_;
 };
 
@@ -492,10 +502,11 @@ template <class Stepper, class System, class Save, class Restore>
 DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save, Restore restore) {
   DriveState s{times_.front(), dN, 0, 0};
   if (control_.resume) {
-    if (block_ >= 0)
-      throw UnsupportedError("checkpoint: a wear run under load.blocks cannot be resumed yet; run it from the start");
     const json& j = *control_.resume;
     s = resume_wear(j, scene_, w_, stage_.records);
+    if (blocks_)  // the checkpoint holds every record; this block's follow the earlier blocks'
+      stage_.records.erase(stage_.records.begin(),
+                           stage_.records.begin() + std::ptrdiff_t(j.at("blocks").at("earlier_records").get<std::size_t>()));
     contact_.restore(j.at("contact"));
     restore(j.at("stepper_state"));
     stage_.resumed_from = s.N;
@@ -529,8 +540,18 @@ bool WearRun::boundary(const DriveState& at, bool recorded, Save& save) {
   const bool due =
       std::chrono::duration<double>(clock::now() - last_checkpoint_).count() >= control_.checkpoint_interval;
   if (!control_.checkpoint.empty() && (recorded || stop || due)) {
-    write_checkpoint(control_.checkpoint, wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_,
-                                                          stage_.records, contact_.save(), save()));
+    if (blocks_) {  // every record so far, and where the blocks stand
+      std::vector<WearRecord> all = *blocks_->earlier;
+      all.insert(all.end(), stage_.records.begin(), stage_.records.end());
+      json j = wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_, all, contact_.save(), save());
+      j["blocks"] = blocks_->values;
+      j["blocks"]["block"] = blocks_->block;
+      j["blocks"]["earlier_records"] = blocks_->earlier->size();
+      write_checkpoint(control_.checkpoint, j);
+    } else {
+      write_checkpoint(control_.checkpoint, wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_,
+                                                            stage_.records, contact_.save(), save()));
+    }
     last_checkpoint_ = clock::now();
   }
   return !stop;
@@ -600,38 +621,87 @@ CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlo
 // changes between them), solved on the profile the blocks before it wore. Each block is a wear run of its own from
 // the state the last one left: a fresh stepper (its step and its cached response belong to the old load) and
 // records at the block's start and end and at the scene's record times inside it (a block's start record is the
-// same profile as the previous block's end record, under the new load). No checkpoints: a stop ends the run.
+// same profile as the previous block's end record, under the new load). Its checkpoints hold, beside the block's
+// own run, the block, every record before it, the stage's counts so far, and what the block's first response
+// set (the first step's rate and, from block 0, the stability limit): a resumed run takes the block up where it
+// stopped and the later blocks as the uninterrupted run does, to the bit.
 void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle, const WearControl& control,
                 WearStage& stage) {
-  WearControl no_checkpoints = control;
-  no_checkpoints.checkpoint.clear();
   const std::vector<double> all = record_times(*scene.wear);
   std::vector<double> w(std::size_t(model.grid.n), 0.0);
   double start = 0.0;
   stage.route = "incremental (load.blocks)";
   long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
-  for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
+  // The stage's running values, as a checkpoint carries them.
+  auto values = [&](double rate_max) {
+    return json{{"start", start},
+                {"rate_max", rate_max},
+                {"stability_limit", stage.stability_limit},
+                {"steps", stage.steps},
+                {"rejected_steps", stage.rejected_steps},
+                {"unconverged_steps", stage.unconverged_steps},
+                {"implicit_solves", stage.implicit_solves},
+                {"responses", stage.responses},
+                {"explicit_max_step", stage.explicit_max_step},
+                {"cycle_solves", cycle_solves},
+                {"cycle_iterations", cycle_iterations},
+                {"contact_implicit_solves", implicit_solves},
+                {"implicit_iterations", implicit_iterations}};
+  };
+  std::size_t first = 0;
+  const json* resumed = control.resume ? &control.resume->at("blocks") : nullptr;
+  if (control.resume && !control.resume->contains("blocks"))
+    throw InputError("checkpoint: not written by a run under load.blocks");
+  if (resumed) {
+    first = resumed->at("block").get<std::size_t>();
+    if (first >= scene.blocks.size()) throw InputError("checkpoint: its block is not one of load.blocks");
+    start = resumed->at("start").get<double>();
+    stage.stability_limit = resumed->at("stability_limit").get<double>();
+    stage.steps = resumed->at("steps").get<int>();
+    stage.rejected_steps = resumed->at("rejected_steps").get<int>();
+    stage.unconverged_steps = resumed->at("unconverged_steps").get<int>();
+    stage.implicit_solves = resumed->at("implicit_solves").get<int>();
+    stage.responses = resumed->at("responses").get<int>();
+    stage.explicit_max_step = resumed->at("explicit_max_step").get<double>();
+    cycle_solves = resumed->at("cycle_solves").get<long>();
+    cycle_iterations = resumed->at("cycle_iterations").get<long>();
+    implicit_solves = resumed->at("contact_implicit_solves").get<long>();
+    implicit_iterations = resumed->at("implicit_iterations").get<long>();
+    const json& records = control.resume->at("records");
+    for (std::size_t k = 0; k < resumed->at("earlier_records").get<std::size_t>(); ++k)
+      stage.records.push_back(record_from(records.at(k)));
+  }
+  for (std::size_t b = first; b < scene.blocks.size(); ++b) {
     const double end = start + scene.blocks[b].cycles;
     std::vector<double> times{start};
     for (double t : all)
       if (t > start && t < end) times.push_back(t);
     times.push_back(end);
     IncrementalContactResponse contact(scene, model, cycle, block_load(scene, model.pair, scene.blocks[b]));
-    wear::CycleResponse first;
-    contact.respond(w, first);
-    double rate_max = 0.0, s_max = 0.0;
-    for (int i = 0; i < model.grid.n; ++i) {
-      rate_max = std::max(rate_max, stage.rate_coefficient * first.p[i] * first.s[i]);
-      s_max = std::max(s_max, first.s[i]);
+    const bool resuming = resumed && b == first;
+    WearControl block_control = control;
+    if (!resuming) block_control.resume.reset();
+    double rate_max = 0.0;
+    if (resuming) {
+      rate_max = resumed->at("rate_max").get<double>();
+    } else {
+      wear::CycleResponse response;
+      contact.respond(w, response);
+      double s_max = 0.0;
+      for (int i = 0; i < model.grid.n; ++i) {
+        rate_max = std::max(rate_max, stage.rate_coefficient * response.p[i] * response.s[i]);
+        s_max = std::max(s_max, response.s[i]);
+      }
+      if (b == 0)
+        stage.stability_limit =
+            wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), stage.rate_coefficient, s_max);
     }
-    if (b == 0)
-      stage.stability_limit =
-          wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), stage.rate_coefficient, s_max);
     WearStage part;  // the block's run; its records and counts join the stage's
     part.rate_coefficient = stage.rate_coefficient;
     part.asymptote = stage.asymptote;
     part.stability_limit = stage.stability_limit;
-    WearRun run(scene, model, no_checkpoints, contact, part, times, w, int(b));
+    const BlockProgress progress{int(b), &stage.records, values(rate_max)};
+    WearRun run(scene, model, block_control, contact, part, times, w, &progress);
     if (rate_max == 0.0)
       run.record_unworn();
     else if (scene.wear->stepper == WearStepper::explicit_capped)
@@ -648,6 +718,7 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     stage.explicit_step_cap = part.explicit_step_cap;
     stage.explicit_max_step = std::max(stage.explicit_max_step, part.explicit_max_step);
     stage.cycles_reached = part.cycles_reached;
+    if (part.resumed_from) stage.resumed_from = part.resumed_from;
     cycle_solves += contact.cycle_solves, cycle_iterations += contact.cycle_iterations;
     implicit_solves += contact.implicit_solves, implicit_iterations += contact.implicit_iterations;
     if (part.interrupted) {

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <tuple>
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -180,6 +181,35 @@ TEST_CASE("the reference steppers' checkpoints resume to the bit too") {
     const json stopped = json::parse(read_file(s.work / "out" / "resume" / "summary.json"));
     CHECK(stopped["wear"]["steps"].get<int>() == step);
     check_resumes_to(s, whole, stopped["wear"]["cycles_reached"].get<double>());
+  }
+}
+
+TEST_CASE("a run under load.blocks stopped or killed in any block resumes to the uninterrupted result") {
+  // Three blocks (Q/fP = 0.5 for 200 cycles, a history of P and Q for 5000, Q/fP = 0.7 for 2000; 256 cells, 123
+  // steps in all): the step hooks count each block's steps, so step 1 stops in the first block and step 30 in the
+  // second, after the first block's records.
+  Scratch s;
+  s.write("s.json", R"({"name": "resume", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "load": {"P": 1e5, "blocks": [{"Q": {"ratio": 0.5}, "cycles": 200},
+      {"history": [[0, 1e5, 2e4, 0], [0.25, 1.2e5, 0, 0], [0.5, 1e5, -2e4, 0], [0.75, 0.8e5, 0, 0], [1, 1e5, 2e4, 0]],
+       "cycles": 5000}, {"Q": {"ratio": 0.7}, "cycles": 2000}]},
+    "grid": {"cells": 256, "window": [-0.2e-3, 0.2e-3]},
+    "effects": {"wear": {"k": 1e-12, "cycles": 7200, "record": 8}}, "output": {"dir": "out/resume", "plots": false}})");
+  const Whole whole = whole_run(s);
+  for (const auto& [step, first_cycle, last_cycle] : {std::tuple{1, 0.0, 200.0}, std::tuple{30, 200.0, 5200.0}}) {
+    INFO("stopped at step " << step << " of its block");
+    const Outcome stopped = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}});
+    REQUIRE_MESSAGE(stopped.exited(kInterrupted), stopped.describe());
+    const double reached = json::parse(read_file(s.work / "out" / "resume" / "summary.json"))["wear"]["cycles_reached"];
+    CHECK(reached > first_cycle);
+    CHECK(reached < last_cycle);
+    check_resumes_to(s, whole, reached);
+    INFO("killed at step " << step << " of its block");
+    const Outcome killed = s.fretwear({"run", "s.json", "-q", "--checkpoint-every", "0"},
+                                      {{"FRETWEAR_KILL_AT_STEP", std::to_string(step)}});
+    REQUIRE_MESSAGE(ended_by(killed, SIGKILL), killed.describe());
+    check_resumes_to(s, whole);
   }
 }
 

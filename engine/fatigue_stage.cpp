@@ -208,9 +208,10 @@ void add_fatigue_summary(nlohmann::json& stress, const FatigueStage& f, const Si
   stress["swt_delta_eps_n"] = m.max.delta_eps_n;
   const std::optional<RuizProfile>& r = f.last().ruiz;
   stress["ruiz_F1_max"] = r ? json(r->F1_max) : json(nullptr);
-  stress["ruiz_F1_max_x"] = r ? json(r->F1_max_x) : json(nullptr);
+  // A maximum of zero (nothing slips under load: a worn contact at its limit) has no place.
+  stress["ruiz_F1_max_x"] = r && r->F1_max > 0.0 ? json(r->F1_max_x) : json(nullptr);
   stress["ruiz_F2_max"] = r ? json(r->F2_max) : json(nullptr);
-  stress["ruiz_F2_max_x"] = r ? json(r->F2_max_x) : json(nullptr);
+  stress["ruiz_F2_max_x"] = r && r->F2_max > 0.0 ? json(r->F2_max_x) : json(nullptr);
   stress["fatigue_seconds"] = f.seconds;
 }
 

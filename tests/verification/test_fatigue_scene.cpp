@@ -154,3 +154,28 @@ TEST_CASE("fatigue scene: a bulk tension in phase with Q raises SWT and F2, the 
   std::error_code ec;
   fs::remove_all(dir, ec);
 }
+
+TEST_CASE("Ruiz's places are null where nothing slips under load (a maximum of zero has no place)") {
+  FatigueStage f;
+  FatigueRecord rec;
+  RuizProfile r;
+  r.x = {-1e-4, 0.0, 1e-4};
+  r.F1 = r.F2 = {0.0, 0.0, 0.0};
+  r.F1_max = r.F2_max = 0.0;
+  r.F1_max_x = r.F2_max_x = -1e-4;  // the first point, as ruiz() leaves a maximum of zero
+  rec.ruiz = r;
+  rec.swt.points.resize(1);
+  f.records.push_back(rec);
+  nlohmann::json stress;
+  add_fatigue_summary(stress, f, SingularEdges{});
+  CHECK(stress["ruiz_F1_max"] == 0.0);
+  CHECK(stress["ruiz_F1_max_x"].is_null());
+  CHECK(stress["ruiz_F2_max_x"].is_null());
+  // A maximum above zero keeps its place.
+  f.records.back().ruiz->F1_max = 1.0;
+  f.records.back().ruiz->F2_max = 2.0;
+  nlohmann::json slipping;
+  add_fatigue_summary(slipping, f, SingularEdges{});
+  CHECK(slipping["ruiz_F1_max_x"] == -1e-4);
+  CHECK(slipping["ruiz_F2_max_x"] == -1e-4);
+}

@@ -1,6 +1,10 @@
 #include "engine/preflight.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include <fmt/format.h>
 
@@ -32,12 +36,85 @@ void check_strain(const Scene& scene, const Model& model, const NormalResult& no
                                    p_mean, strain, model.pair.E_star(), kMaxContactStrain));
 }
 
+// Gross slip wears the contact flat and never stops: every contact cell slides the stroke each cycle, the worn area
+// grows by c ∫ p s dx a cycle, and the contact widens as the profile flattens, until the run's contact reaches the
+// window's end and the run stops with an error (engine/wear_contacts.cpp). The worn profile is about the original gap
+// g0 cut flat at the depth d that holds the worn area,
+//     W(d) = ∫ max(0, d − g0(x)) dx,
+// whose ends are where g0 = d: on examples/gross_slip_displacement_wear.json the flat after 18 000 cycles ends at
+// ±0.244 mm where the run's contact ends at ±0.246 mm, and with 2e6 cycles the run reached the window's end (±0.6 mm)
+// at cycle 260 747 where this puts it at 2.67e5. The estimate is optimistic on both counts (the elastic contact
+// reaches a little past the flat, and the slip per cycle grows as the contact flattens), so a run it puts past the
+// window's end is refused before it starts, and one within kFlatMargin of it warned.
+constexpr double kFlatMargin = 0.1;
+
+// W(d) of the profile and where g0 = d, integrated outward from the lowest point in steps of h/4 (trapezoids).
+struct Flat {
+  double area = 0.0, left = 0.0, right = 0.0;
+};
+Flat flat_at(const Profile& profile, double d, double h) {
+  const double dx = 0.25 * h, x0 = profile.lowest_point();
+  Flat f{0.0, x0, x0};
+  for (int side : {-1, 1}) {
+    double x = x0, v = std::max(0.0, d - profile.gap(x0));
+    for (int k = 1; v > 0.0 && k < 100000000; ++k) {
+      const double xn = x0 + side * k * dx, vn = std::max(0.0, d - profile.gap(xn));
+      // the end between x and xn, where d − g0 falls to zero (linear)
+      const double t = vn > 0.0 ? 1.0 : v / (v - (d - profile.gap(xn)));
+      f.area += 0.5 * (v + (vn > 0.0 ? vn : 0.0)) * dx * t;
+      (side < 0 ? f.left : f.right) = x + side * t * dx;
+      x = xn, v = vn;
+    }
+  }
+  return f;
+}
+
+// The depth whose flat holds `area` (m²): TOMS 748 on W(d) − area, bracketed by doubling.
+Flat flat_holding(const Profile& profile, double area, double h) {
+  double hi = 1e-9;
+  while (flat_at(profile, hi, h).area < area && hi < 1.0) hi *= 2.0;
+  if (!(flat_at(profile, hi, h).area >= area)) return flat_at(profile, hi, h);
+  std::uintmax_t iterations = 200;
+  const auto [lo_d, hi_d] = boost::math::tools::toms748_solve(
+      [&](double d) { return flat_at(profile, d, h).area - area; }, 0.0, hi, -area, flat_at(profile, hi, h).area - area,
+      boost::math::tools::eps_tolerance<double>(30), iterations);
+  return flat_at(profile, 0.5 * (lo_d + hi_d), h);
+}
+
+void check_gross_slip_window(const Scene& scene, const Model& model, const CycleStage& cycle, const WearEstimate& e,
+                             std::vector<std::string>& problems, Preflight* preflight) {
+  if (cycle.result.regime != Regime::gross_slip || !scene.blocks.empty() || !(e.area_rate > 0.0)) return;
+  const Grid& grid = model.grid;
+  const double cycles = scene.wear->cycles;
+  const Flat end = flat_holding(model.profile, e.area_rate * cycles, grid.h());
+  if (end.left > grid.x_min && end.right < grid.x_max &&
+      flat_holding(model.profile, (1.0 + kFlatMargin) * e.area_rate * cycles, grid.h()).left > grid.x_min &&
+      flat_holding(model.profile, (1.0 + kFlatMargin) * e.area_rate * cycles, grid.h()).right < grid.x_max)
+    return;
+  // The cycles at which the flat reaches the nearer end of the window.
+  const double d_window = std::min(model.profile.gap(grid.x_min), model.profile.gap(grid.x_max));
+  const double reached = flat_at(model.profile, d_window, grid.h()).area / e.area_rate;
+  const double x0 = model.profile.lowest_point();
+  const double half = 1.2 * std::max(x0 - end.left, end.right - x0);
+  const std::string what = fmt::format(
+      "in gross slip the contact wears flat and keeps widening: at the first cycle's rate (c ∫ p s dx = {:.3g} m² a "
+      "cycle) it reaches the window's end after about {:.3g} of the {:.4g} cycles (the original profile cut flat to "
+      "hold the worn area; docs/SCENES.md, \"Wear\"). Widen grid.window to about [{:.3g}, {:.3g}] m (that flat after "
+      "the last cycle, and 20 %), or wear fewer cycles",
+      e.area_rate, reached, cycles, x0 - half, x0 + half);
+  if (reached < cycles)
+    problems.push_back("effects.wear.cycles: " + what);
+  else if (preflight)
+    preflight->warnings.push_back({"window_reached", "the worn contact may reach the window's end: " + what});
+}
+
 // The wear run's cost from its first cycle: refused past kMaxRunSeconds, a warning past kLongRunSeconds.
 void check_wear(const Scene& scene, const Setup& setup, const NormalResult& normal, std::vector<std::string>& problems,
                 Preflight* preflight) {
   const WearEffect& effect = *scene.wear;
-  const WearEstimate e =
-      estimate_wear(scene, setup.model, solve_cycle(scene, setup.model, *setup.cycle, normal));
+  const CycleStage cycle = solve_cycle(scene, setup.model, *setup.cycle, normal);
+  const WearEstimate e = estimate_wear(scene, setup.model, cycle);
+  check_gross_slip_window(scene, setup.model, cycle, e, problems, preflight);
   if (effect.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(e.stability_limit); !problem.empty()) {
       problems.push_back(problem);

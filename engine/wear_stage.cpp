@@ -355,6 +355,8 @@ WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleSt
   double s_max = 0.0;
   for (double s : response.s) s_max = std::max(s_max, s);
   if (s_max == 0.0) return e;  // nothing slips: nothing wears
+  for (std::size_t i = 0; i < response.s.size(); ++i)
+    e.area_rate += law.rate_coefficient() * response.p[i] * response.s[i] * model.grid.h();
   e.stability_limit = wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), law.rate_coefficient(), s_max);
   if (effect.stepper == WearStepper::cycle_by_cycle) {
     e.responses = effect.cycles;

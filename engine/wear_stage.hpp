@@ -124,6 +124,7 @@ struct WearEstimate {
   double seconds_per_response = 0.0;  // wall time of one warm-started cycle response (s)
   double stability_limit = 0.0;       // 1.5 Δx/(E* c s_max) (cycles); 0 when nothing slips
   double responses = 0.0;             // cycle responses the run will take (at least)
+  double area_rate = 0.0;             // the worn area per cycle at the first cycle, c ∫ p s dx (m²/cycle)
   double seconds() const { return responses * seconds_per_response; }
 };
 WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleStage& cycle);

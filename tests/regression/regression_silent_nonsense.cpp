@@ -2,6 +2,7 @@
 // closed form), a radius of 1e-308 m (a slip of 1e205 m), a crack a metre long or a metre outside the window, a
 // 1e12-cycle run one cycle at a time (months, with no estimate). Each now either is refused for a physical reason
 // (exit 2) or completes with warnings, on stderr and in summary.json, that say what cannot be trusted.
+#include <filesystem>
 #include <set>
 
 #include <doctest/doctest.h>
@@ -137,4 +138,38 @@ TEST_CASE("gross-slip wear with the specimen wearing says its scar is the shared
     "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
     "output": {"plots": false}, "effects": {"wear": {"k": 5e-14, "cycles": 2000}}})";
   CHECK(warning_codes(partial).count("gross_slip_shared_scar") == 0);
+}
+
+TEST_CASE("a gross-slip wear run whose contact would reach the window's end is refused before it starts") {
+  // The gross-slip example with 2e6 cycles: the flat that holds the worn area reaches ±0.6 mm at about 2.66e5
+  // cycles (the run, let go, stopped there with an error at 2.61e5, having written nothing).
+  Scratch scratch{"window"};
+  auto scene = [](const std::string& cycles, const std::string& window, const std::string& delta = "25e-6") {
+    return "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
+      "load": {"P": 18500, "control": "displacement", "delta": )" + delta + R"(},
+      "grid": {"cells": 256, "window": )" + window + R"(, "reference_depth": 6e-3},
+      "output": {"plots": false}, "effects": {"wear": {"k": 5e-14, "pad_fraction": 1.0, "cycles": )" + cycles + "}}}";
+  };
+  write_file(scratch.path / "s.json", scene("2e6", "[-0.6e-3, 0.6e-3]"));
+  for (const char* command : {"validate", "run"}) {
+    const Outcome o = run_program(scratch.path, {command, "s.json"});
+    CAPTURE(o.all());
+    CHECK(o.status == 2);
+    CHECK(o.err.find("effects.wear.cycles: in gross slip the contact wears flat") != std::string::npos);
+    CHECK(o.err.find("reaches the window's end after about 2.6") != std::string::npos);
+    CHECK(!std::filesystem::exists(scratch.path / "output"));
+  }
+  // The window it names holds the run, which completes.
+  const Outcome refused = run_program(scratch.path, {"validate", "s.json"});
+  const std::size_t at = refused.err.find("Widen grid.window to about [");
+  REQUIRE(at != std::string::npos);
+  const std::string window = refused.err.substr(at + 27, refused.err.find(" m (", at) - at - 27);
+  write_file(scratch.path / "s.json", scene("2e6", window));
+  const Outcome wide = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(wide.all());
+  CHECK(wide.status == 0);
+  // Close to the end, the run goes ahead with a warning.
+  CHECK(warning_codes(scene("2.45e5", "[-0.6e-3, 0.6e-3]")).count("window_reached") == 1);
+  // Partial slip never widens: no estimate.
+  CHECK(warning_codes(scene("2e6", "[-0.6e-3, 0.6e-3]", "1e-6")).count("window_reached") == 0);
 }

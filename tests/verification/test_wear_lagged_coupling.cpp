@@ -2,7 +2,9 @@
 // responses take the analogy's uncoupled cycle on the worn profile plus the coupling's share of the slip from the
 // last coupled cycle, refreshed as the uncoupled wear rate moves. It must not change the run: the same contact-
 // implicit stepper driven by it and by a response that solves the coupled cycle every time wears the same profile,
-// to the stepper's tolerance, and keeps the same stick zone.
+// to the stepper's tolerance, and keeps the same stick zone. And it must not change a resumed run: what decides
+// its refreshes goes through the checkpoint (save() and restore()), so a restored response answers as the
+// uninterrupted one, to the bit.
 //
 // The case: PHYSICS.md's Hertz wear case (P = 1e5 N/m, Q/fP = 0.5, f = 0.5, Archard k = 1e-12) with a steel pad on
 // an aluminium specimen (E = 71 GPa, ν = 0.33; β ≈ −0.11), 128 cells, recorded at 10^3 cycles (the transient) and at
@@ -58,12 +60,22 @@ double area(const std::vector<double>& w, double h) {
 
 }  // namespace
 
+struct Case {
+  Scene scene = [] {
+    Scene s = test::hertz_wear(1e5, 0.5, 1e5, kCells);
+    s.specimen = {71e9, 0.33};
+    return s;
+  }();
+  Model model = make_model(scene);
+  NormalResult normal = solve_normal(scene, model);
+  CycleStage cycle = solve_cycle(scene, model, normal);
+};
+
 TEST_CASE("the lagged coupling wears the coupled run's profile to the stepper's tolerance") {
-  Scene s = test::hertz_wear(1e5, 0.5, 1e5, kCells);
-  s.specimen = {71e9, 0.33};
-  const Model model = make_model(s);
-  const NormalResult normal = solve_normal(s, model);
-  const CycleStage cycle = solve_cycle(s, model, normal);
+  const Case the_case;
+  const Scene& s = the_case.scene;
+  const Model& model = the_case.model;
+  const CycleStage& cycle = the_case.cycle;
   REQUIRE(cycle.plan.beta != 0.0);
   const double c = s.wear->coefficient;  // Archard: c = k
   const std::vector<double> times{1e3, 1e5};
@@ -94,4 +106,33 @@ TEST_CASE("the lagged coupling wears the coupled run's profile to the stepper's 
     CHECK(std::abs(fast[k].last.stick_right - full[k].last.stick_right) <=
           kStepperTolerance * std::abs(full[k].last.stick_right));
   }
+}
+
+TEST_CASE("the lagged coupling's state goes through a checkpoint: a restored response answers bit for bit") {
+  const Case c;
+  // Profiles along a run's transient: the worn profile after 10^3 cycles, scaled.
+  IncrementalContactResponse run(c.scene, c.model, c.cycle);
+  const std::vector<Run> worn = march(run, c.scene.wear->coefficient, {1e3});
+  std::vector<std::vector<double>> profiles;
+  for (double scale : {0.2, 0.5, 0.5005, 0.501, 0.5015, 0.502, 0.6, 0.6005}) {
+    profiles.push_back(worn[0].w);
+    for (double& x : profiles.back()) x *= scale;
+  }
+  IncrementalContactResponse a(c.scene, c.model, c.cycle);
+  wear::CycleResponse ra, rb;
+  for (std::size_t k = 0; k < 4; ++k) a.respond(profiles[k], ra);
+  IncrementalContactResponse b(c.scene, c.model, c.cycle);
+  b.restore(a.save());
+  rb = ra;  // the stepper hands its last pressure to both as the warm start
+  for (std::size_t k = 4; k < profiles.size(); ++k) {
+    CAPTURE(k);
+    a.respond(profiles[k], ra);
+    b.respond(profiles[k], rb);
+    CHECK(ra.s == rb.s);
+    CHECK(ra.p == rb.p);
+    CHECK(a.shear_top() == b.shear_top());
+  }
+  CHECK(a.lagged_responses() == b.lagged_responses());
+  CHECK(a.coupled_responses() == b.coupled_responses());
+  CHECK(a.lagged_responses() > 0);  // the sequence exercises the lagged responses
 }

@@ -209,6 +209,8 @@ double IncrementalContactResponse::worn_area(std::span<const double> w) const {
 
 bool IncrementalContactResponse::lag_allowed(std::span<const double> w) const {
   if (!(gain_ >= 0.0) || !same_stick_zones()) return false;
+  // A contact at the window's ends is the coupled response's error to raise.
+  if (uncoupled_.p.front() > 0.0 || uncoupled_.p.back() > 0.0) return false;
   const double area = worn_area(w);
   return gain_ * drift() * std::abs(area - area_ref_) <= kLagSafety * tolerance_ * area;
 }

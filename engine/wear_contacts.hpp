@@ -172,19 +172,20 @@ class AnalogyContactResponse : public WearContact {
 // and over the wear since the refresh (the worn area A(w) − A(w_r)) it adds at most ε (A(w) − A(w_r)) to the worn
 // area. A response is lagged while
 //     γ · drift · |A(w) − A(w_r)|  ≤  kLagSafety · τ · A(w),   τ = effects.wear.tolerance, kLagSafety = 1/2,
-// i.e. while the lag has added less than half what one accepted step may err by (the stepper holds each step's
-// error to τ max w; here the worn area's share), so that the run's error at most grows by half of the stepper's
-// own; and in full otherwise, at the first call, and when the uncoupled cycle's stick zones move. Each refresh
-// measures ε for the correction it replaces and sets γ = ε / drift from it (at the first, with no ε yet, γ = ρ =
-// Σ_i p_i |Δs_i| / Σ_i p_i s_c,i, the correction's share of the rate: the correction taken to move with the rate
-// it corrects), so a correction that moved more than γ said makes the next refresh come sooner. The drift and ε
-// are in the worn area's norm, not cell by cell: at the contact's edges the correction jumps as the worn contact
-// spreads there one cell at a time (about 1 % of the peak rate per accepted step at 256 cells, the coupled and the
-// uncoupled cycle loading the new edge cell differently), a maximum-norm bound would couple every response, and
-// those jumps change sign from step to step. Near the limit, where the worn area hardly grows, nearly every
-// response is lagged. docs/PERFORMANCE.md ("Dissimilar bodies") has the run against every response coupled at
-// 256 to 1024 cells; tests/verification/test_wear_lagged_coupling.cpp holds a run to it. Where the analogy cannot
-// follow the worn contact (it slips backwards at its leading edge) every later response is coupled.
+// i.e. while the lag has added less than half what one accepted step may err by (the stepper holds each step's error to
+// τ max w; here the worn area's share), so that the run's error at most grows by half of the stepper's own; and in full
+// otherwise, at the first call, when the uncoupled cycle's stick zones move, and when its contact reaches the window's
+// ends (the coupled response raises the error). Each refresh measures ε for the correction it replaces and sets γ = ε /
+// drift from it, a quarter of the last γ at least (at the first, with no ε yet, γ = ρ = Σ_i p_i |Δs_i| / Σ_i p_i s_c,i,
+// the correction's share of the rate: the correction taken to move with the rate it corrects), so a correction that
+// moved more than γ said makes the next refresh come sooner. The drift and ε are in the worn area's norm, not cell by
+// cell: at the contact's edges the correction jumps as the worn contact spreads there one cell at a time (about 1 % of
+// the peak rate per accepted step at 256 cells, the coupled and the uncoupled cycle loading the new edge cell
+// differently), a maximum-norm bound would couple every response, and those jumps change sign from step to step. Near
+// the limit, where the worn area hardly grows, nearly every response is lagged. docs/PERFORMANCE.md ("Dissimilar
+// bodies") has the run against every response coupled at 256 to 1024 cells;
+// tests/verification/test_wear_lagged_coupling.cpp holds a run to it. Where the analogy cannot follow the worn contact
+// (it slips backwards at its leading edge) every later response is coupled.
 class IncrementalContactResponse : public WearContact {
  public:
   // How a β ≠ 0 response under force control and a constant P takes in the coupling (above); other loads and

@@ -1,6 +1,7 @@
 #include "engine/wear_contacts.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -145,6 +146,9 @@ std::vector<double> continued_over_gaps(std::span<const double> p, std::span<con
 // The energy's equivalent slip e / (f p_ref) is capped at this many times the slip travelled (header).
 constexpr double kEnergySlipCap = 2.0;
 
+// The lagged coupling may add this share of what one accepted step may err by (header).
+constexpr double kLagSafety = 0.5;
+
 IncrementalSlipOptions incremental_options(const Scene& scene, double beta) {
   IncrementalSlipOptions o;
   o.increments_per_cycle = scene.tangential->increments;
@@ -156,11 +160,12 @@ IncrementalSlipOptions incremental_options(const Scene& scene, double beta) {
 }  // namespace
 
 IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model,
-                                                       const CycleStage& cycle)
-    : IncrementalContactResponse(scene, model, cycle, cycle.plan.load) {}
+                                                       const CycleStage& cycle, Coupling coupling)
+    : IncrementalContactResponse(scene, model, cycle, cycle.plan.load, coupling) {}
 
 IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const Model& model,
-                                                       const CycleStage& cycle, const CyclicLoad& load)
+                                                       const CycleStage& cycle, const CyclicLoad& load,
+                                                       Coupling coupling)
     : WearContact(scene, model),
       slip_(*model.kernel, incremental_options(scene, cycle.plan.beta)),
       datum_(model.grid, model.pair, cycle.reference_x, cycle.reference_depth),
@@ -170,9 +175,115 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
     throw UnsupportedError(sliding_under_force_control(load_.Q_max, load_.f * load_.P));
   P_ref_ = load_.P;
   for (const HistoryPoint& pt : load_.history) P_ref_ = std::max(P_ref_, pt.P);
+  if (coupling == Coupling::lagged && beta_ != 0.0 && load_.history.empty() && !(load_.delta > 0.0))
+    analogy_ = std::make_unique<AnalogyContactResponse>(scene, model, load_);
+  tolerance_ = scene.wear ? scene.wear->tolerance : WearEffect{}.tolerance;
 }
 
 void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
+  if (analogy_) {
+    const long solves = analogy_->cycle_solves, iterations = analogy_->cycle_iterations;
+    try {
+      analogy_->respond(w, uncoupled_);
+    } catch (const UnsupportedError&) {  // the analogy cannot follow this contact: every response coupled from now
+      analogy_.reset();
+    }
+    if (analogy_) {
+      cycle_solves += analogy_->cycle_solves - solves;
+      cycle_iterations += analogy_->cycle_iterations - iterations;
+    }
+  }
+  if (analogy_ && lag_allowed(w)) {
+    respond_lagged(out);
+    return;
+  }
+  respond_coupled(w, out);
+  if (analogy_) refresh(w, out);
+}
+
+double IncrementalContactResponse::worn_area(std::span<const double> w) const {
+  double a = 0.0;
+  for (double x : w) a += x;
+  return a * model_.grid.h();
+}
+
+bool IncrementalContactResponse::lag_allowed(std::span<const double> w) const {
+  if (!(gain_ >= 0.0) || !same_stick_zones()) return false;
+  // A contact at the window's ends is the coupled response's error to raise.
+  if (uncoupled_.p.front() > 0.0 || uncoupled_.p.back() > 0.0) return false;
+  const double area = worn_area(w);
+  return gain_ * drift() * std::abs(area - area_ref_) <= kLagSafety * tolerance_ * area;
+}
+
+double IncrementalContactResponse::drift() const {
+  const std::vector<double>& p = uncoupled_.p;
+  const std::vector<double>& p_r = uncoupled_ref_.p;
+  double moved = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double r_r = p_r[i] * uncoupled_ref_.s[i];
+    moved += std::abs(p[i] * uncoupled_.s[i] - r_r);
+    scale += r_r;
+  }
+  return scale > 0.0 ? moved / scale : (moved > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+}
+
+bool IncrementalContactResponse::same_stick_zones() const {
+  const wear::CycleResponse& a = uncoupled_;
+  const wear::CycleResponse& b = uncoupled_ref_;
+  return a.has_stick == b.has_stick && a.stick_left == b.stick_left && a.stick_right == b.stick_right &&
+         a.stick_zones == b.stick_zones;
+}
+
+void IncrementalContactResponse::respond_lagged(wear::CycleResponse& out) {
+  const int n = model_.grid.n;
+  out.p = uncoupled_.p;
+  out.s.assign(n, 0.0);
+  for (int i = 0; i < n; ++i)
+    if (out.p[i] > 0.0) out.s[i] = std::max(0.0, uncoupled_.s[i] + slip_correction_[i]);
+  out.s_touching.clear();  // partial slip: as the coupled response
+  out.has_stick = coupled_ref_.has_stick;
+  out.stick_left = coupled_ref_.stick_left;
+  out.stick_right = coupled_ref_.stick_right;
+  out.stick_zones = coupled_ref_.stick_zones;
+  const std::vector<double>& q_u = analogy_->shear_top();
+  q_top_.resize(n);
+  for (int i = 0; i < n; ++i) q_top_[i] = q_u[i] + shear_correction_[i];
+  ++lagged_responses_;
+}
+
+void IncrementalContactResponse::refresh(std::span<const double> w, const wear::CycleResponse& out) {
+  const int n = model_.grid.n;
+  // ε: the lagged rate the last correction would have given here, against the coupled one; ρ: the correction's
+  // share of the rate.
+  double rate = 0.0, correction = 0.0, miss = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (!(out.p[i] > 0.0)) continue;
+    rate += out.p[i] * out.s[i];
+    correction += out.p[i] * std::abs(out.s[i] - uncoupled_.s[i]);
+    if (gain_ >= 0.0)
+      miss += out.p[i] * std::abs(std::max(0.0, uncoupled_.s[i] + slip_correction_[i]) - out.s[i]);
+  }
+  if (!(rate > 0.0)) {
+    gain_ = -1.0;  // nothing wears here: no correction to measure, couple the next response too
+  } else if (gain_ < 0.0) {
+    gain_ = correction / rate;  // γ = ρ before any ε is measured
+  } else if (same_stick_zones()) {
+    const double d = drift();
+    if (d > 0.0) gain_ = std::max(miss / rate / d, 0.25 * gain_);  // a lucky ε lengthens the lag by 4 at most
+  }
+  slip_correction_.resize(n);
+  shear_correction_.resize(n);
+  const std::vector<double>& q_u = analogy_->shear_top();
+  for (int i = 0; i < n; ++i) {
+    slip_correction_[i] = out.p[i] > 0.0 ? out.s[i] - uncoupled_.s[i] : 0.0;
+    shear_correction_[i] = q_top_[i] - q_u[i];
+  }
+  uncoupled_ref_ = uncoupled_;
+  coupled_ref_ = out;
+  area_ref_ = worn_area(w);
+}
+
+void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear::CycleResponse& out) {
   const Grid& grid = model_.grid;
   const int n = grid.n;
   set_gap(w);
@@ -192,9 +303,11 @@ void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleR
                                                     : slip_.solve_history(normal_, load_, gap_, &datum_, &coupling);
   cycle_solves += r.n_increments;
   cycle_iterations += r.n_iterations;
+  ++coupled_responses_;
   cycle_ = r.cycles.back();
   if (cycle_.slip_travelled.empty())  // Q ≥ f P at some point of the cycle under force control: the bodies slide
     throw UnsupportedError("effects.wear: " + cycle_.message);
+  q_top_ = cycle_.q_top;
   out.p = ref.p;
   const double f = *scene_.friction;
   // The slip the stepper's rate c p s needs: the slip travelled where the pressure is that of P (β = 0, constant P),
@@ -220,12 +333,46 @@ void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleR
     out.s_touching.clear();
 }
 
+namespace {
+
+json response_json(const wear::CycleResponse& r) {
+  return {{"p", r.p},
+          {"s", r.s},
+          {"has_stick", r.has_stick},
+          {"stick_left", r.stick_left},
+          {"stick_right", r.stick_right},
+          {"stick_zones", r.stick_zones}};
+}
+
+void response_from(const json& j, wear::CycleResponse& r) {
+  j.at("p").get_to(r.p);
+  j.at("s").get_to(r.s);
+  r.has_stick = j.at("has_stick").get<bool>();
+  r.stick_left = j.at("stick_left").get<double>();
+  r.stick_right = j.at("stick_right").get<double>();
+  j.at("stick_zones").get_to(r.stick_zones);
+}
+
+}  // namespace
+
 json IncrementalContactResponse::save() const {
   json j = counts();
   j["route"] = "incremental";
   j["normal"] = contact_state_json(normal_);
   j["implicit"] = contact_state_json(implicit_);
   if (P_ref_ != load_.P) j["reference"] = contact_state_json(reference_);
+  j["q_top"] = q_top_;
+  j["coupled_responses"] = coupled_responses_;
+  j["lagged_responses"] = lagged_responses_;
+  if (analogy_)
+    j["lagged"] = {{"analogy", analogy_->save()},
+                   {"uncoupled", response_json(uncoupled_)},
+                   {"uncoupled_ref", response_json(uncoupled_ref_)},
+                   {"coupled_ref", response_json(coupled_ref_)},
+                   {"slip_correction", slip_correction_},
+                   {"shear_correction", shear_correction_},
+                   {"gain", gain_},
+                   {"area_ref", area_ref_}};
   return j;
 }
 
@@ -235,6 +382,23 @@ void IncrementalContactResponse::restore(const json& j) {
   contact_state_from(j.at("implicit"), implicit_);
   if (j.contains("reference")) contact_state_from(j.at("reference"), reference_);
   restore_counts(j);
+  if (j.contains("q_top")) j.at("q_top").get_to(q_top_);
+  coupled_responses_ = j.value("coupled_responses", 0L);
+  lagged_responses_ = j.value("lagged_responses", 0L);
+  if (!j.contains("lagged")) {
+    analogy_.reset();  // written by a run whose every response was coupled
+    return;
+  }
+  if (!analogy_) throw InputError("checkpoint: written by a wear run with the lagged coupling, which this one has not");
+  const json& l = j.at("lagged");
+  analogy_->restore(l.at("analogy"));
+  response_from(l.at("uncoupled"), uncoupled_);
+  response_from(l.at("uncoupled_ref"), uncoupled_ref_);
+  response_from(l.at("coupled_ref"), coupled_ref_);
+  l.at("slip_correction").get_to(slip_correction_);
+  l.at("shear_correction").get_to(shear_correction_);
+  gain_ = l.at("gain").get<double>();
+  area_ref_ = l.at("area_ref").get<double>();
 }
 
 std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const CycleStage& cycle) {

@@ -156,22 +156,73 @@ class AnalogyContactResponse : public WearContact {
 //    travelled: exact (c p_ref s = c e / f) wherever p_ref ≥ p̄/2, and below that the wear rate is c p_ref · 2Σ|Δw|,
 //    less than the energy's, falling to zero with p_ref. Such cells wear as the uncoupled pressure under P says;
 //    the limit the run tends to is then that of the pressure under P (PERFORMANCE.md, "Dissimilar bodies").
+//
+// The lagged coupling (β ≠ 0 under force control and a constant P, Coupling::lagged, the default). A coupled cycle
+// marches the first loading and two cycles of block Gauss–Seidel increments (90 increments of about six sweeps at
+// 40 increments per cycle); the analogy's uncoupled cycle on the same worn profile (AnalogyContactResponse: a
+// normal and a corrective solve) costs a few hundredths of it. So a response may be
+//     s(w) = max(0, s_u(w) + Δs(w_r))   on the contact of p(w) (zero off it),   Δs(w_r) = s_c(w_r) − s_u(w_r),
+// s_u the uncoupled slip, s_c the coupled one (the energy's equivalent above) and w_r the profile of the last
+// coupled response (the refresh); the shear at the top of the cycle is corrected alike, and the stick zones are the
+// refresh's. Its error is measured, as the stepper measures the worn profile, in the wear it adds: with the rates
+// r = p s, the relative error of the lagged rate of the worn area (h c Σ_i p_i s_i)
+//     ε = Σ_i p_i |max(0, s_u,i + Δs_i(w_r)) − s_c,i(w)| / Σ_i p_i s_c,i(w)
+// is taken proportional to how far the uncoupled rate has moved since the refresh,
+//     ε ≈ γ · drift,   drift = Σ_i |r_u,i(w) − r_u,i(w_r)| / Σ_i r_u,i(w_r),
+// and over the wear since the refresh (the worn area A(w) − A(w_r)) it adds at most ε (A(w) − A(w_r)) to the worn
+// area. A response is lagged while
+//     γ · drift · |A(w) − A(w_r)|  ≤  kLagSafety · τ · A(w),   τ = effects.wear.tolerance, kLagSafety = 1/2,
+// i.e. while the lag has added less than half what one accepted step may err by (the stepper holds each step's error to
+// τ max w; here the worn area's share), so that the run's error at most grows by half of the stepper's own; and in full
+// otherwise, at the first call, when the uncoupled cycle's stick zones move, and when its contact reaches the window's
+// ends (the coupled response raises the error). Each refresh measures ε for the correction it replaces and sets γ = ε /
+// drift from it, a quarter of the last γ at least (at the first, with no ε yet, γ = ρ = Σ_i p_i |Δs_i| / Σ_i p_i s_c,i,
+// the correction's share of the rate: the correction taken to move with the rate it corrects), so a correction that
+// moved more than γ said makes the next refresh come sooner. The drift and ε are in the worn area's norm, not cell by
+// cell: at the contact's edges the correction jumps as the worn contact spreads there one cell at a time (about 1 % of
+// the peak rate per accepted step at 256 cells, the coupled and the uncoupled cycle loading the new edge cell
+// differently), a maximum-norm bound would couple every response, and those jumps change sign from step to step. Near
+// the limit, where the worn area hardly grows, nearly every response is lagged. docs/PERFORMANCE.md ("Dissimilar
+// bodies") has the run against every response coupled at 256 to 1024 cells;
+// tests/verification/test_wear_lagged_coupling.cpp holds a run to it. Where the analogy cannot follow the worn contact
+// (it slips backwards at its leading edge) every later response is coupled.
 class IncrementalContactResponse : public WearContact {
  public:
+  // How a β ≠ 0 response under force control and a constant P takes in the coupling (above); other loads and
+  // β = 0 always solve their own cycle.
+  enum class Coupling { every_response, lagged };
   // The cycle stage's load (its plan) and datum.
-  IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle);
+  IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle,
+                             Coupling coupling = Coupling::lagged);
   // Another load on the cycle stage's datum (a block of load.blocks; P and f are the scene's).
-  IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle, const CyclicLoad& load);
+  IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle, const CyclicLoad& load,
+                             Coupling coupling = Coupling::lagged);
   // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
-  const std::vector<double>& shear_top() const override { return cycle_.q_top; }
+  const std::vector<double>& shear_top() const override { return q_top_; }
   double Q_top() const override { return cycle_.Q_peak; }
-  // The steady cycle of the last respond().
+  // The steady cycle of the last coupled response (the refresh, under Coupling::lagged).
   const CycleResult& last_cycle() const { return cycle_; }
+  // Responses that solved the coupled cycle, and those that took the lagged correction.
+  long coupled_responses() const { return coupled_responses_; }
+  long lagged_responses() const { return lagged_responses_; }
   nlohmann::json save() const override;
   void restore(const nlohmann::json& j) override;
 
  private:
+  // The cycle solved on w (every response but the lagged ones).
+  void respond_coupled(std::span<const double> w, wear::CycleResponse& out);
+  // The lagged response from uncoupled_ (the analogy's on w) and the last correction.
+  void respond_lagged(wear::CycleResponse& out);
+  // After a coupled response `out` on w (the profile of uncoupled_): ε, γ and the new correction.
+  void refresh(std::span<const double> w, const wear::CycleResponse& out);
+  // Whether the response on w may take the lagged correction (header).
+  bool lag_allowed(std::span<const double> w) const;
+  double worn_area(std::span<const double> w) const;  // h Σ w (m²)
+  // The uncoupled wear rate's drift since the refresh, and whether its stick zones are the refresh's.
+  double drift() const;
+  bool same_stick_zones() const;
+
   IncrementalSlipSolver slip_;
   ReferenceDatum datum_;
   CyclicLoad load_;
@@ -179,6 +230,17 @@ class IncrementalContactResponse : public WearContact {
   ContactState normal_;     // under load.P: where the cycle's first loading starts
   ContactState reference_;  // under P_ref_ when it is not load.P (a history): p_ref
   CycleResult cycle_;
+  std::vector<double> q_top_;  // the shear at the top of the cycle of the last response (Pa)
+  long coupled_responses_ = 0, lagged_responses_ = 0;
+  // The lagged coupling (null analogy_: every response coupled).
+  std::unique_ptr<AnalogyContactResponse> analogy_;
+  wear::CycleResponse uncoupled_;      // the analogy's response on the current w (its p warm-starts the next)
+  wear::CycleResponse uncoupled_ref_;  // ... and on w_r
+  wear::CycleResponse coupled_ref_;    // the coupled response on w_r (its stick zones)
+  std::vector<double> slip_correction_, shear_correction_;  // Δs(w_r) (m) and q_top's (Pa)
+  double gain_ = -1.0;                 // γ: ε per unit drift; negative before the first refresh
+  double area_ref_ = 0.0;              // the worn area of w_r (m²)
+  double tolerance_ = 0.0;             // τ: the stepper's tolerance
 };
 
 // The contact the wear stage sees: by the route the cycle stage ran (IncrementalContactResponse, with the cycle

@@ -1,8 +1,9 @@
 // The cost of Dundurs' coupling in a wear run (issue: a dissimilar 10^6-cycle wear run at 1024 cells within 3× the
 // similar one). The case: the Hertz wear scene of PHYSICS.md (R = 10 mm, P = 100 kN/m, f = 0.5, Q/fP = 0.5, Archard
 // k = 1e-12 1/Pa, 10^6 cycles, 8 records, 1024 cells, force control), once with two steel bodies (β = 0: the
-// Ciavarella–Jäger analogy) and once with a steel pad on an aluminium specimen (E = 71 GPa, ν = 0.33; β ≈ −0.12:
-// the coupled incremental route, which solves normal and tangential problems together). Each iteration runs the whole
+// Ciavarella–Jäger analogy) and once with a steel pad on an aluminium specimen (E = 71 GPa, ν = 0.33; β ≈ −0.11:
+// the coupled incremental route, which solves normal and tangential problems together, with its lagged coupling:
+// engine/wear_contacts.hpp). Each iteration runs the whole
 // scene (normal, cycle, wear) as the command line does, without writing files. docs/PERFORMANCE.md ("Dissimilar
 // bodies") has the command and the measured ratio.
 #include <benchmark/benchmark.h>

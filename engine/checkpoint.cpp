@@ -67,35 +67,50 @@ void write_checkpoint(const std::filesystem::path& path, const json& j) {
     std::error_code ec;
     std::filesystem::create_directories(path.parent_path(), ec);  // an error shows at open()
   }
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
   std::filesystem::path tmp = path;
   tmp += fmt::format(".tmp-{}", ::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t k = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) {
-      const int e = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(e)));
+  // The bytes go first into a file without a name (O_TMPFILE), which a SIGKILL or a crash during the write leaves
+  // nowhere: it is named tmp only once written and synced, and renamed over the checkpoint at once. Where the file
+  // system has no O_TMPFILE (or /proc is not there to name it), tmp is written directly; the signals above are held
+  // either way.
+  auto write_all = [&](int fd) {
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t k = ::write(fd, bytes.data() + done, bytes.size() - done);
+      if (k < 0 && errno == EINTR) continue;
+      if (k <= 0) return false;
+      done += std::size_t(k);
     }
-    done += std::size_t(k);
+    // FRETWEAR_CHECKPOINT_PAUSE_MS (tests only): a pause with the bytes written, so that a test's signals land
+    // while the checkpoint is being put in place.
+    if (const char* pause = std::getenv("FRETWEAR_CHECKPOINT_PAUSE_MS"))
+      std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
+    return ::fsync(fd) == 0;
+  };
+  bool named = false;
+  if (const int fd = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644); fd >= 0) {
+    if (write_all(fd)) {
+      ::unlink(tmp.c_str());  // a file of this name is this process id's own, left by an earlier process
+      const std::string self = fmt::format("/proc/self/fd/{}", fd);
+      named = ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, tmp.c_str(), AT_SYMLINK_FOLLOW) == 0;
+    }
+    ::close(fd);
   }
-  // FRETWEAR_CHECKPOINT_PAUSE_MS (tests only): a pause with the temporary file written, so that a test's signals
-  // land while the checkpoint is being put in place.
-  if (const char* pause = std::getenv("FRETWEAR_CHECKPOINT_PAUSE_MS"))
-    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    ::unlink(tmp.c_str());
-    throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
+  if (!named) {
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(errno)));
+    const bool written = write_all(fd);
+    const int e = errno;
+    if (::close(fd) != 0 || !written) {
+      ::unlink(tmp.c_str());
+      throw Error(fmt::format("cannot write the checkpoint {}: {}", tmp.string(), std::strerror(written ? errno : e)));
+    }
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     ::unlink(tmp.c_str());
     throw Error(fmt::format("cannot move the checkpoint into {}: {}", path.string(), std::strerror(errno)));
   }
-  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
   const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dir >= 0) {
     ::fsync(dir);

@@ -1,8 +1,8 @@
 // Checkpoints of a wear run (docs/SCENES.md, "Long runs"): everything a wear run carries from one step to the next —
 // the wear depth, the cycle, the next ΔN, the record index, the records so far, the stepper's and the contact
 // solver's warm starts and counts — so that a resumed run takes exactly the steps the uninterrupted one takes. CBOR
-// (RFC 8949), vectors as raw little-endian doubles; written to a temporary file, fsync'ed and renamed over the
-// previous one.
+// (RFC 8949), vectors as raw little-endian doubles; written to a file with no name (O_TMPFILE, or a temporary
+// file where the file system has none), fsync'ed, named and renamed over the previous one.
 //
 // The document, one CBOR map:
 //     format "fretwear-checkpoint", format_version, fretwear (the version), scene, scene_hash (16 hex digits),
@@ -39,7 +39,7 @@ std::uint64_t scene_hash(const Scene& scene);
 // The checkpoint at `path` for this scene, or nothing when there is none. Throws InputError when the file is not a
 // fretwear checkpoint, has another format or fretwear version, or belongs to another scene.
 std::optional<nlohmann::json> read_checkpoint(const std::filesystem::path& path, const Scene& scene);
-// Writes j atomically (temporary file, fsync, rename, fsync of the folder).
+// Writes j atomically (an unnamed file, fsync, its name, rename, fsync of the folder).
 void write_checkpoint(const std::filesystem::path& path, const nlohmann::json& j);
 
 // The checkpoint of the wear run of `scene` (hash: scene_hash(scene)) standing at `at` with state w, out of

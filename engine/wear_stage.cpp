@@ -272,10 +272,6 @@ set grid
   return s;
 }
 
-}  // namespace
-
-namespace {
-
 // The displacement datum of the cycle stage (engine/cycle_stage.cpp, solve_cycle): reference points below the centre
 // of the contact under P alone, grid.reference_depth deep or 10 contact half-widths.
 std::pair<double, double> datum_point(const Scene& scene, const NormalResult& normal) {

@@ -63,6 +63,25 @@ double stuck_compliance(const Grid& grid, const ElasticPair& pair, double x_c, d
   return stuck.approach + datum.relative_displacement(stuck.p, {});
 }
 
+double settled_worn_area(const Grid& grid, const HalfPlaneKernel& kernel, std::span<const double> g0,
+                         std::span<const double> w, double P, const std::vector<Zone>& zones) {
+  const int n = grid.n;
+  auto inside = [&zones](double x) {
+    return std::any_of(zones.begin(), zones.end(), [x](const Zone& z) { return x > z.left.x && x < z.right.x; });
+  };
+  std::vector<double> g(n, std::numeric_limits<double>::infinity());
+  for (int i = 0; i < n; ++i)
+    if (inside(grid.x(i))) g[i] = g0[i] + w[i];
+  ContactState s;
+  require_converged(NormalSolver(kernel).solve(g, P, s), "settled complete-contact");
+  std::vector<double> u(n);
+  kernel.apply(s.p, u);
+  double W = 0.0;
+  for (int i = 0; i < n; ++i)
+    if (std::isfinite(g0[i])) W += inside(grid.x(i)) ? w[i] : std::max(0.0, -(g0[i] + u[i] - s.approach));
+  return W * grid.h();
+}
+
 AnalogyDisplacement::AnalogyDisplacement(const Grid& grid, const HalfPlaneKernel& kernel, std::span<const double> g0,
                                          double P, double f, const ReferenceDatum& datum)
     : grid_(grid), g0_(g0), P_(P), f_(f), datum_(datum), solver_(kernel) {

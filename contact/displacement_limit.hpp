@@ -82,6 +82,13 @@ class AnalogyDisplacement {
   double stick_limit_ = 0.0;
 };
 
+// The limit of a worn state whose stick zones Z stand still from now on: their cells no longer wear, so it is the
+// complete contact over Z on the worn profile g0 + w under P (cells whose centres lie in Z), and its worn depth is w
+// inside Z and the overlap that contact leaves outside. Returns its worn area (m²). Z's ends should be cell
+// boundaries, as a run's stick zones are. Throws ConvergenceError when the solve stops short.
+double settled_worn_area(const Grid& grid, const HalfPlaneKernel& kernel, std::span<const double> g0,
+                         std::span<const double> w, double P, const std::vector<Zone>& zones);
+
 // The limit under displacement control (header).
 struct DisplacementLimit {
   double Q_initial = 0.0;         // Q0, the first cycle's (N/m)

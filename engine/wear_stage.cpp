@@ -719,6 +719,21 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
   stage.mean_iterations_implicit = double(implicit_iterations) / double(std::max(1L, implicit_solves));
 }
 
+// Under displacement control, with an asymptote: the limit of the last record's stick zones (WearStage::settled),
+// with the cycle stage's datum.
+void settle(const Scene& scene, const Model& model, const CycleStage& cycle, WearStage& stage) {
+  if (!stage.asymptote.Q_max || stage.records.empty() || stage.records.back().stick_zones.empty()) return;
+  const WearRecord& last = stage.records.back();
+  std::vector<Zone> zones(last.stick_zones.size());
+  for (std::size_t k = 0; k < zones.size(); ++k)
+    zones[k].left.x = last.stick_zones[k].first, zones[k].right.x = last.stick_zones[k].second;
+  WearStage::Settled settled;
+  settled.worn_area = settled_worn_area(model.grid, *model.kernel, model.g0, last.w, scene.P, zones);
+  settled.Q_max = *scene.delta / stuck_compliance(model.grid, model.pair, cycle.reference_x, cycle.reference_depth,
+                                                  zones);
+  stage.settled = settled;
+}
+
 }  // namespace
 
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
@@ -761,6 +776,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
   stage.mean_iterations_implicit =
       double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
+  settle(scene, model, cycle, stage);
   return stage;
 }
 
@@ -834,6 +850,12 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
     out["asymptote"]["Q_max"] = *w.asymptote.Q_max;
     out["asymptote"]["stuck_compliance"] = *w.asymptote.stuck_compliance;
     out["asymptote_note"] = w.asymptote.note;
+  }
+  if (w.settled) {  // displacement control: the limit of the last record's stick zones, were they to stand still
+    out["settled_limit"] = {{"worn_area", w.settled->worn_area},
+                            {"Q_max", w.settled->Q_max},
+                            {"fraction", w.settled->worn_area > 0.0 ? json(last.worn_area / w.settled->worn_area)
+                                                                     : json(nullptr)}};
   }
   out["cycles_target"] = e.cycles;
   out["cycles_reached"] = w.cycles_reached;

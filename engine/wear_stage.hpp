@@ -95,6 +95,14 @@ struct WearStage {
   bool interrupted = false;               // stopped on request before the last cycle (records hold what was done)
   double cycles_reached = 0.0;            // where the run stopped (the last cycle when it completed)
   std::optional<double> resumed_from;     // the cycle of the checkpoint the run continued from
+  // Under displacement control, with an asymptote: the limit of the last record's stick zones were they to stand
+  // still (settled_worn_area(), contact/displacement_limit.hpp), and its Q, δ over their stuck compliance; what the
+  // run tends to once its stick zone has settled, which growth over worn points leaves below the asymptote.
+  struct Settled {
+    double worn_area = 0.0;  // m²
+    double Q_max = 0.0;      // N/m
+  };
+  std::optional<Settled> settled;
 };
 
 // Steering a wear run from outside it: progress, checkpoints and a stop request. wear/ knows none of this; the

@@ -269,6 +269,10 @@ TEST_CASE("a wear run under displacement control ends fully stuck over its stick
     const double C_final =
         stuck_compliance(m.grid, m.pair, cycle.reference_x, cycle.reference_depth, as_zones(last.stick_zones));
     const double W_frozen = frozen_zone_worn_area(m, kP, last.w, last.stick_zones);
+    // What the stage reports as the settled limit: the same state.
+    REQUIRE(w.settled);
+    CHECK(w.settled->worn_area == test::rel(W_frozen, 1e-12));
+    CHECK(w.settled->Q_max * C_final == test::rel(*s.delta, 1e-12));
     const double growth = last.stick_zone->second - first.stick_zone->second;
     MESSAGE(fmt::format("{} cells: {:.6f} of the asymptote (its grid's limit {:.6f}); Q0 {:.2f}, at the end {:.2f}, "
                         "delta/C(Z0) {:.2f}, delta/C(final stick zone) {:.2f} ({:+.2e}); the final zone's limit "

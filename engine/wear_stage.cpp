@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "common/error.hpp"
+#include "contact/displacement_limit.hpp"
+#include "contact/reference_datum.hpp"
 #include "engine/checkpoint.hpp"
 #include "engine/plot.hpp"
 #include "engine/simulation.hpp"
@@ -25,7 +27,7 @@ namespace {
 std::string num(double v) { return csv_number(v); }
 
 // One row per wear record (SI); the stick-zone ends are empty when the contact slips everywhere, the fraction when
-// there is no asymptote (displacement control).
+// there is no asymptote (gross slip, a history, blocks, ...).
 // Under load.blocks a last column, block, names the block (from 0) whose load the record is under.
 std::string wear_history_csv(const WearStage& w) {
   const bool blocks = !w.records.empty() && w.records.front().block >= 0;
@@ -153,9 +155,9 @@ set grid
   if (a.unavailable.empty())
     s += fmt::format("set title \"{}: contact pressure as the slip zones wear (the asymptote's is singular at the "
                      "stick-zone ends)\" noenhanced\n", scene.name);
-  else  // displacement control: no asymptote; in gross slip no stick zone, and the whole contact wears
+  else  // no asymptote; in gross slip no stick zone, and the whole contact wears
     s += fmt::format("set title \"{}: contact pressure as the contact wears ({})\" noenhanced\n", scene.name,
-                     w.records.front().stick_zone ? "no asymptote under displacement control"
+                     w.records.front().stick_zone ? "no asymptote: see wear.asymptote_note"
                                                   : "gross slip: no stick zone, no asymptote");
   s += "set ylabel 'pressure p (MPa)'\n";
   s += svg_and_png("wear_pressure", series("$7*1e-6", "asymptote"));
@@ -251,7 +253,7 @@ set grid
       s += fmt::format("set logscale y2\nset y2range [{}:{}]\nset y2label 'fraction of the asymptote'\n"
                        "set ytics nomirror\nset y2tics\n", area_lo / a.worn_area, area_top / a.worn_area);
   }
-  // Without an asymptote (displacement control) the dashed line is the initial rate c ∫ p s dx carried on: the
+  // Without an asymptote (gross slip, a history, ...) the dashed line is the initial rate c ∫ p s dx carried on: the
   // worn area of uniform wear at the rate of the unworn contact (Archard, for sliding: k P s N).
   double rate0 = 0.0;
   for (std::size_t i = 0; i < w.records.front().p.size(); ++i)
@@ -270,18 +272,43 @@ set grid
   return s;
 }
 
+// The displacement datum of the cycle stage (engine/cycle_stage.cpp, solve_cycle): reference points below the centre
+// of the contact under P alone, grid.reference_depth deep or 10 contact half-widths.
+std::pair<double, double> datum_point(const Scene& scene, const NormalResult& normal) {
+  const double l = normal.zones.front().left.x, r = normal.zones.back().right.x;
+  return {0.5 * (l + r), scene.reference_depth ? *scene.reference_depth : 5.0 * (r - l)};
+}
+
+// Under displacement control below the stick limit (contact/displacement_limit.hpp): the first cycle's Q0 and stick
+// zones by the analogy, and Q at the limit over them, δ/C(Z0); or why not (gross slip, a bulk stress).
+void displacement_stick_zones(const Scene& scene, const Model& model, InitialStick& st) {
+  if (scene.bulk_stress != 0.0) {
+    st.unavailable = "under displacement control with a bulk stress the stick zone shifts with the bulk strain, which "
+                     "also enters the displacement of the reference points, and the limit (a complete contact over a "
+                     "stick zone, fully stuck under the Q the displacement gives) is not established: not computed";
+    return;
+  }
+  const NormalResult normal = solve_normal(scene, model);
+  const auto [x_c, d] = datum_point(scene, normal);
+  const ReferenceDatum datum(model.grid, model.pair, x_c, d);
+  const AnalogyDisplacement analogy(model.grid, *model.kernel, model.g0, scene.P, *scene.friction, datum);
+  const double delta = *scene.delta;
+  if (!(delta < analogy.stick_limit())) {
+    st.unavailable = fmt::format("under displacement control the first cycle slides (gross slip: load.delta = {:.6g} m "
+                                 "is past the stick limit {:.6g} m): there is no stick zone, and the wear never stops",
+                                 delta, analogy.stick_limit());
+    return;
+  }
+  const DisplacementLimit lim =
+      displacement_limit(analogy, model.grid, model.pair, x_c, d, delta, analogy.at_displacement(delta).Q);
+  st.zones = lim.stick_zones;
+  st.displacement = lim;
+}
+
 }  // namespace
 
 InitialStick initial_stick_zones(const Scene& scene, const Model& model) {
   InitialStick st;
-  if (scene.control == LoadControl::displacement) {
-    st.unavailable = "under displacement control Q_max follows the prescribed displacement as the contact wears, so "
-                     "the stick zone is not the initial one: paper 002's asymptote (complete contact over the initial "
-                     "stick zone under a fixed Q) does not apply. In partial slip the wear still stops, at a complete "
-                     "contact over a stick zone whose Q is the one the displacement gives (not computed); in gross "
-                     "slip there is no stick zone and the wear never stops";
-    return st;
-  }
   if (!scene.blocks.empty()) {
     st.unavailable = "under load.blocks the load changes from block to block, and paper 002's asymptote (complete "
                      "contact over the initial stick zone of one fixed Q) does not apply: not computed";
@@ -297,6 +324,10 @@ InitialStick initial_stick_zones(const Scene& scene, const Model& model) {
                                  "the cycle, and paper 002's asymptote (similar bodies) is not established: not "
                                  "computed",
                                  model.pair.beta());
+    return st;
+  }
+  if (scene.control == LoadControl::displacement) {
+    displacement_stick_zones(scene, model, st);
     return st;
   }
   AnalogyContactResponse contact(scene, model, cyclic_load(scene, model.pair));
@@ -326,6 +357,34 @@ WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const Norma
   for (Zone& z : cells) z.left.x = model.grid.left(z.first_cell), z.right.x = model.grid.left(z.last_cell + 1);
   if (!cells.empty())
     a.cells_worn_area = wear_limit(model.profile, model.pair.A(), model.grid, scene.P, cells).worn_area;
+  if (st.displacement) {
+    const DisplacementLimit& d = *st.displacement;
+    a.Q_max = d.Q;
+    a.stuck_compliance = d.compliance;
+    const std::string zones = d.stick_zones.size() > 1 ? "zones" : "zone";
+    if (!d.shrinks)
+      a.note = fmt::format(
+          "displacement control below the stick limit: the first cycle (the analogy's steady cycle whose reference "
+          "points reach load.delta) has Q0 = {0:.6g} N/m, and its stick {1} never slip{2}. At the limit the slip zones "
+          "carry no pressure, and the contact is a complete contact over the stick {1}, fully stuck, of stuck "
+          "compliance C = {3:.6g} m²/N by the datum, above the first cycle's delta/Q0 = {4:.6g} m²/N: Q falls as the "
+          "slip zones wear, to delta/C = {5:.6g} N/m (asymptote.Q_max), and the asymptote is the complete contact "
+          "over the first cycle's stick {1} on the original profile under P (paper 002's limit at Q0). As Q falls "
+          "the stick {1} can grow over points beside {6} that slipped, and wore, before {7} reached them; the run then "
+          "settles on a slightly wider {1}, worn a little inside, and below this worn area (docs/METHODS.md, \"Wear "
+          "under displacement control\")",
+          d.Q_initial, zones, d.stick_zones.size() > 1 ? "" : "s", d.compliance, d.initial_compliance, d.Q,
+          d.stick_zones.size() > 1 ? "them" : "it", d.stick_zones.size() > 1 ? "they" : "it");
+    else
+      a.note = fmt::format(
+          "displacement control below the stick limit: the first cycle (the analogy's steady cycle whose reference "
+          "points reach load.delta) has Q0 = {:.6g} N/m. At the limit the slip zones carry no pressure, and the "
+          "contact is a complete contact over the stick {}, fully stuck; over the first cycle's it would be stiffer "
+          "than that cycle (delta/Q0 = {:.6g} m²/N), so Q rises and the stick {} shrink{} into the first cycle's, to "
+          "those of the Q* = {:.6g} N/m whose complete contact's stuck compliance C = {:.6g} m²/N gives delta = C Q* "
+          "(asymptote.Q_max). The asymptote is the complete contact over them on the original profile under P",
+          d.Q_initial, zones, d.initial_compliance, zones, d.stick_zones.size() > 1 ? "" : "s", d.Q, d.compliance);
+  }
   return a;
 }
 
@@ -733,6 +792,21 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
   stage.mean_iterations_implicit = double(implicit_iterations) / double(std::max(1L, implicit_solves));
 }
 
+// Under displacement control, with an asymptote: the limit of the last record's stick zones (WearStage::settled),
+// with the cycle stage's datum.
+void settle(const Scene& scene, const Model& model, const CycleStage& cycle, WearStage& stage) {
+  if (!stage.asymptote.Q_max || stage.records.empty() || stage.records.back().stick_zones.empty()) return;
+  const WearRecord& last = stage.records.back();
+  std::vector<Zone> zones(last.stick_zones.size());
+  for (std::size_t k = 0; k < zones.size(); ++k)
+    zones[k].left.x = last.stick_zones[k].first, zones[k].right.x = last.stick_zones[k].second;
+  WearStage::Settled settled;
+  settled.worn_area = settled_worn_area(model.grid, *model.kernel, model.g0, last.w, scene.P, zones);
+  settled.Q_max = *scene.delta / stuck_compliance(model.grid, model.pair, cycle.reference_x, cycle.reference_depth,
+                                                  zones);
+  stage.settled = settled;
+}
+
 }  // namespace
 
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
@@ -775,6 +849,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
   stage.mean_iterations_implicit =
       double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
+  settle(scene, model, cycle, stage);
   return stage;
 }
 
@@ -837,13 +912,23 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
         {"edge_intensity", asymptote_edge_intensity(w.asymptote)},
         {"edge_intensities", asymptote_edge_intensities(w.asymptote)}}}};
   // Where the run got to (the last record is wear.cycles); an interrupted run stops short of cycles_target.
-  // The cycle's route on the worn profile; without an asymptote (displacement control), null and the reason.
+  // The cycle's route on the worn profile; without an asymptote, null and the reason.
   out["route"] = w.route;
   out["Q_max_initial"] = w.records.front().Q_max;
   out["Q_max_final"] = last.Q_max;
   if (!w.asymptote.unavailable.empty()) {
     out["asymptote"] = nullptr;
     out["asymptote_note"] = w.asymptote.unavailable;
+  } else if (w.asymptote.Q_max) {  // displacement control: the limit's Q, its compliance, and how it was found
+    out["asymptote"]["Q_max"] = *w.asymptote.Q_max;
+    out["asymptote"]["stuck_compliance"] = *w.asymptote.stuck_compliance;
+    out["asymptote_note"] = w.asymptote.note;
+  }
+  if (w.settled) {  // displacement control: the limit of the last record's stick zones, were they to stand still
+    out["settled_limit"] = {{"worn_area", w.settled->worn_area},
+                            {"Q_max", w.settled->Q_max},
+                            {"fraction", w.settled->worn_area > 0.0 ? json(last.worn_area / w.settled->worn_area)
+                                                                     : json(nullptr)}};
   }
   out["cycles_target"] = e.cycles;
   out["cycles_reached"] = w.cycles_reached;

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "contact/displacement_limit.hpp"
 #include "contact/wear_limit.hpp"
 #include "engine/cycle_stage.hpp"
 #include "engine/folder.hpp"
@@ -27,10 +28,13 @@ using Interval = std::pair<double, double>;
 
 // The asymptotic state of paper 002 (PHYSICS.md, "Wear"; contact/wear_limit.hpp): complete contact over the initial
 // stick zone on the original profile; the worn depth is the overlap it leaves outside. It assumes a stick zone that
-// stays where it started, which holds under force control (Q between fixed limits); under displacement control Q_max
-// changes as the contact wears and the stick zone moves with it (in partial slip the wear still stops, at a limit this
-// does not compute; in gross slip there is no stick zone and wear never stops), so the state is not computed there and
-// `unavailable` says why (w and p are then empty).
+// stays where it started, which holds under force control (Q between fixed limits). Under displacement control below
+// the stick limit Q falls as the slip zones wear (contact/displacement_limit.hpp), so the first cycle's stick zone
+// never slips either, and the asymptote is the complete contact over it, fully stuck under Q = δ/C (`Q_max`, C the
+// stuck compliance by the datum); `note` says so, and that the stick zone may grow a little over points that have
+// worn, which leaves the run slightly below this worn area. In gross slip there is no stick zone and wear never
+// stops; there, and where the limit is not established (a history, blocks, dissimilar bodies, reverse slip, a bulk
+// stress under displacement control), the state is not computed and `unavailable` says why (w and p are then empty).
 //
 // The run on the grid tends to a limit of its own: a cell wears or not as a whole, so the stick zones it never wears
 // are the runs of cells the first cycle's corrective contact loads, whose ends are cell boundaries, while the direct
@@ -43,14 +47,20 @@ using Interval = std::pair<double, double>;
 struct WearAsymptote : WearLimit {
   std::string unavailable;  // empty when computed; otherwise the reason it is not
   double cells_worn_area = 0.0;  // the limit over the run's stick cells, m² (0 without stick zones)
+  // Under displacement control: Q at the limit (N/m), the stuck compliance C of its complete contact (m²/N), and how
+  // the limit was found; unset or empty under force control.
+  std::optional<double> Q_max, stuck_compliance;
+  std::string note;
 };
 
-// The first cycle's stick zones on the model's grid, located to sub-cell accuracy, one per run of the corrective
-// contact (AnalogyContactResponse), or why paper 002's limit does not apply (`unavailable`: displacement control,
-// reverse slip).
+// The stick zones of the limit on the model's grid, located to sub-cell accuracy, one per run of the corrective
+// contact: the first cycle's (AnalogyContactResponse; under displacement control the analogy's cycle that reaches
+// load.delta, with the limit's Q in `displacement`), or why the limit is not computed (`unavailable`: gross slip,
+// reverse slip, a history, blocks, dissimilar bodies, a bulk stress under displacement control).
 struct InitialStick {
   std::vector<Zone> zones;
   std::string unavailable;
+  std::optional<DisplacementLimit> displacement;  // under displacement control
 };
 InitialStick initial_stick_zones(const Scene& scene, const Model& model);
 
@@ -85,6 +95,14 @@ struct WearStage {
   bool interrupted = false;               // stopped on request before the last cycle (records hold what was done)
   double cycles_reached = 0.0;            // where the run stopped (the last cycle when it completed)
   std::optional<double> resumed_from;     // the cycle of the checkpoint the run continued from
+  // Under displacement control, with an asymptote: the limit of the last record's stick zones were they to stand
+  // still (settled_worn_area(), contact/displacement_limit.hpp), and its Q, δ over their stuck compliance; what the
+  // run tends to once its stick zone has settled, which growth over worn points leaves below the asymptote.
+  struct Settled {
+    double worn_area = 0.0;  // m²
+    double Q_max = 0.0;      // N/m
+  };
+  std::optional<Settled> settled;
 };
 
 // Steering a wear run from outside it: progress, checkpoints and a stop request. wear/ knows none of this; the
@@ -107,8 +125,8 @@ struct WearControl {
   std::optional<nlohmann::json> resume;               // a checkpoint read by read_checkpoint(), to continue from
 };
 
-// The asymptote of the scene on `model`: wear_limit() over the stick zones of the first cycle by the analogy route,
-// or the reason it does not apply (displacement control; reverse slip, which the analogy cannot follow). Throws
+// The asymptote of the scene on `model`: wear_limit() over the stick zones of initial_stick_zones(), or the reason it
+// is not computed. Throws
 // ConvergenceError when its solve does not converge.
 WearAsymptote wear_asymptote(const Scene& scene, const Model& model, const NormalResult& normal);
 

@@ -103,7 +103,10 @@ TEST_CASE("displacement control below the stick limit wears as force control at 
   const double Q0 = d.wear.records.front().Q_max;
   REQUIRE(Q0 > 0.3 * kF * kP);
   REQUIRE(Q0 < 0.6 * kF * kP);
-  CHECK(!d.wear.asymptote.unavailable.empty());  // no paper-002 asymptote under displacement control
+  // The limit over the first cycle's stick zone, under the Q that δ gives on it (test_wear_displacement_limit.cpp).
+  CHECK(d.wear.asymptote.unavailable.empty());
+  REQUIRE(d.wear.asymptote.Q_max);
+  CHECK(*d.wear.asymptote.Q_max < Q0);
   const Run f = run(force_wear(Q0, 1e4, records));
   REQUIRE(f.wear.route == "analogy");
   REQUIRE(d.model.grid.n == f.model.grid.n);

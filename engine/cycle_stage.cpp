@@ -164,14 +164,21 @@ set yzeroaxis lt -1 lw 0.5
 }
 
 
-// δ at the top of an analogy cycle: the stick zone of the steady cycle has never slipped (w = 0 there since the first
-// loading), so at its cells the rigid shift is λ = (K q_top)_i + ε x_i (incremental_slip.hpp), and δ follows from the
-// datum (reference_datum.hpp). In phase, the bottom is the top reversed: δ_max = |δ_top|.
+// δ at the top of an analogy cycle: the stick zones of the steady cycle have never slipped (w = 0 there since the
+// first loading), so at their cells the rigid shift is λ = (K q_top)_i + ε x_i (incremental_slip.hpp), one λ for
+// every zone, and δ follows from the datum (reference_datum.hpp). In phase, the bottom is the top reversed:
+// δ_max = |δ_top|. λ is read at the middle of the widest stick zone: with several, the middle of their hull may lie
+// between them, where the surfaces slip or part.
 void analogy_delta_max(const Model& model, const NormalResult& normal, const CyclicLoad& load,
                        const ReferenceDatum& datum, CycleResult& c) {
   if (!c.stick_zone || c.q_top.empty()) return;
   const Grid& g = model.grid;
-  const double x_mid = 0.5 * (c.stick_zone->first + c.stick_zone->second);
+  auto zone = *c.stick_zone;
+  if (!c.stick_zones.empty())
+    zone = *std::max_element(c.stick_zones.begin(), c.stick_zones.end(), [](const auto& a, const auto& b) {
+      return a.second - a.first < b.second - b.first;
+    });
+  const double x_mid = 0.5 * (zone.first + zone.second);
   const int i = std::clamp(int(std::floor((x_mid - g.x_min) / g.h())), 0, g.n - 1);
   std::vector<double> u(g.n);
   model.kernel->apply(c.q_top, u);

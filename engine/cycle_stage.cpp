@@ -1,6 +1,7 @@
 #include "engine/cycle_stage.hpp"
 
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -197,6 +198,11 @@ std::optional<closed_form::StickZone> mindlin_stick_zone(const Scene& scene, con
   return m->z;
 }
 
+std::pair<double, double> reference_point(const Scene& scene, const NormalResult& normal) {
+  const double left = normal.zones.front().left.x, right = normal.zones.back().right.x;
+  return {0.5 * (left + right), scene.reference_depth ? *scene.reference_depth : 5.0 * (right - left)};
+}
+
 CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal) {
   CycleStage stage;
   stage.plan = plan;
@@ -205,10 +211,7 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
   stage.bulk_stress = scene.bulk_stress;
   stage.sigma_top = scene.bulk_stress, stage.sigma_bottom = -scene.bulk_stress;  // in phase with Q (or δ)
   const CyclicLoad& load = plan.load;
-  // The datum: reference points 10 contact half-widths (or grid.reference_depth) below the contact's centre.
-  const double x_left = normal.zones.front().left.x, x_right = normal.zones.back().right.x;
-  stage.reference_x = 0.5 * (x_left + x_right);
-  stage.reference_depth = scene.reference_depth ? *scene.reference_depth : 5.0 * (x_right - x_left);
+  std::tie(stage.reference_x, stage.reference_depth) = reference_point(scene, normal);
   const ReferenceDatum datum(model.grid, model.pair, stage.reference_x, stage.reference_depth);
   if (plan.analogy_first()) {
     stage.route = "analogy";

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -43,6 +44,11 @@ struct CycleStage {
   // sigma_bulk where its Q is largest and smallest.
   double sigma_top = 0.0, sigma_bottom = 0.0;
 };
+
+// The displacement datum's reference points (contact/reference_datum.hpp): below the centre of the contact under P
+// alone, grid.reference_depth deep, or 10 contact half-widths. {x_c, d} (m). The one rule for the cycle stage and
+// the wear stage's limit under displacement control.
+std::pair<double, double> reference_point(const Scene& scene, const NormalResult& normal);
 
 // One steady load cycle, by the plan. Throws UnsupportedError where the analogy, asked for, finds reverse slip.
 CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal);

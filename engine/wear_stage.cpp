@@ -272,13 +272,6 @@ set grid
   return s;
 }
 
-// The displacement datum of the cycle stage (engine/cycle_stage.cpp, solve_cycle): reference points below the centre
-// of the contact under P alone, grid.reference_depth deep or 10 contact half-widths.
-std::pair<double, double> datum_point(const Scene& scene, const NormalResult& normal) {
-  const double l = normal.zones.front().left.x, r = normal.zones.back().right.x;
-  return {0.5 * (l + r), scene.reference_depth ? *scene.reference_depth : 5.0 * (r - l)};
-}
-
 // Under displacement control below the stick limit (contact/displacement_limit.hpp): the first cycle's Q0 and stick
 // zones by the analogy, and Q at the limit over them, δ/C(Z0); or why not (gross slip, a bulk stress).
 void displacement_stick_zones(const Scene& scene, const Model& model, InitialStick& st) {
@@ -289,7 +282,7 @@ void displacement_stick_zones(const Scene& scene, const Model& model, InitialSti
     return;
   }
   const NormalResult normal = solve_normal(scene, model);
-  const auto [x_c, d] = datum_point(scene, normal);
+  const auto [x_c, d] = reference_point(scene, normal);
   const ReferenceDatum datum(model.grid, model.pair, x_c, d);
   const AnalogyDisplacement analogy(model.grid, *model.kernel, model.g0, scene.P, *scene.friction, datum);
   const double delta = *scene.delta;

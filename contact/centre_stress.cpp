@@ -36,9 +36,13 @@ struct Buffers {
   Buffers& operator=(const Buffers&) = delete;
 };
 
+std::complex<double>* as_complex(fftw_complex* c) { return reinterpret_cast<std::complex<double>*>(c); }
+
+}  // namespace
+
 // Out-of-place r2c and c2r plans of size L, made under the planner's lock; executed with fftw_execute_dft_* on other
 // aligned buffers of the same size, which FFTW allows from any thread.
-struct Plans {
+struct CentreStresses::Plans {
   fftw_plan forward = nullptr, inverse = nullptr;
   explicit Plans(int L) {
     std::lock_guard lock(fftw_planner_mutex());
@@ -53,15 +57,13 @@ struct Plans {
   }
 };
 
-std::complex<double>* as_complex(fftw_complex* c) { return reinterpret_cast<std::complex<double>*>(c); }
-
-}  // namespace
+CentreStresses::~CentreStresses() = default;
 
 CentreStresses::CentreStresses(const Grid& grid, std::vector<double> depths)
-    : grid_(grid), depths_(std::move(depths)), L_(smooth_size(2 * grid.n + 2)) {
+    : grid_(grid), depths_(std::move(depths)), L_(smooth_size(2 * grid.n + 2)), plans_(std::make_unique<Plans>(L_)) {
   const int n = grid.n, L = L_, half = L / 2 + 1;
   const double h = grid.h();
-  const Plans plans(L);
+  const Plans& plans = *plans_;
   Buffers b(L);
   for (auto* spectra : {&a_, &b_, &c_, &d_}) spectra->resize(depths_.size() * std::size_t(half));
   // One kernel at depth y into the spectrum `out` (scaled by −1/(π L), the inverse transform's 1/L included).
@@ -91,7 +93,7 @@ CentreStresses::CentreStresses(const Grid& grid, std::vector<double> depths)
 std::vector<Stress> CentreStresses::operator()(const SurfaceTractions& t) const {
   const int n = grid_.n, L = L_, half = L / 2 + 1;
   assert(t.grid.n == n && int(t.p.size()) == n);
-  const Plans plans(L);
+  const Plans& plans = *plans_;
   Buffers b(L);
   // The jumps Δ_b = value right of ξ_b − value left of it, b = 0 … n (zero beyond the grid), and their spectra.
   auto jump_spectrum = [&](std::span<const double> v) {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <complex>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -30,16 +31,22 @@ class CentreStresses {
  public:
   // The kernels of `grid` at the depths y_k ≥ 0 (m).
   CentreStresses(const Grid& grid, std::vector<double> depths);
-  // σ at (grid.x(i), y_k) for every cell i and depth k: out[k n + i]. t's grid must be this one's.
+  ~CentreStresses();
+  CentreStresses(const CentreStresses&) = delete;
+  CentreStresses& operator=(const CentreStresses&) = delete;
+  // σ at (grid.x(i), y_k) for every cell i and depth k: out[k n + i]. t's grid must be this one's. Reentrant: the
+  // plans are executed on buffers of the call's own.
   std::vector<Stress> operator()(const SurfaceTractions& t) const;
   const std::vector<double>& depths() const { return depths_; }
 
  private:
+  struct Plans;
   Grid grid_;
   std::vector<double> depths_;
   int L_ = 0;  // circulant size 2n + 2
   // Per depth, the half spectra (L/2 + 1 entries, divided by L) of a, b, c and d, times −1/π.
   std::vector<std::complex<double>> a_, b_, c_, d_;
+  std::unique_ptr<Plans> plans_;  // made once, under the planner's lock
 };
 
 }  // namespace fretwear

@@ -72,11 +72,12 @@ Flat flat_at(const Profile& profile, double d, double h) {
 // The depth whose flat holds `area` (m²): TOMS 748 on W(d) − area, bracketed by doubling.
 Flat flat_holding(const Profile& profile, double area, double h) {
   double hi = 1e-9;
-  while (flat_at(profile, hi, h).area < area && hi < 1.0) hi *= 2.0;
-  if (!(flat_at(profile, hi, h).area >= area)) return flat_at(profile, hi, h);
+  Flat top = flat_at(profile, hi, h);
+  for (; top.area < area && hi < 1.0; top = flat_at(profile, hi, h)) hi *= 2.0;
+  if (!(top.area >= area)) return top;
   std::uintmax_t iterations = 200;
   const auto [lo_d, hi_d] = boost::math::tools::toms748_solve(
-      [&](double d) { return flat_at(profile, d, h).area - area; }, 0.0, hi, -area, flat_at(profile, hi, h).area - area,
+      [&](double d) { return flat_at(profile, d, h).area - area; }, 0.0, hi, -area, top.area - area,
       boost::math::tools::eps_tolerance<double>(30), iterations);
   return flat_at(profile, 0.5 * (lo_d + hi_d), h);
 }
@@ -87,10 +88,8 @@ void check_gross_slip_window(const Scene& scene, const Model& model, const Cycle
   const Grid& grid = model.grid;
   const double cycles = scene.wear->cycles;
   const Flat end = flat_holding(model.profile, e.area_rate * cycles, grid.h());
-  if (end.left > grid.x_min && end.right < grid.x_max &&
-      flat_holding(model.profile, (1.0 + kFlatMargin) * e.area_rate * cycles, grid.h()).left > grid.x_min &&
-      flat_holding(model.profile, (1.0 + kFlatMargin) * e.area_rate * cycles, grid.h()).right < grid.x_max)
-    return;
+  const Flat margin = flat_holding(model.profile, (1.0 + kFlatMargin) * e.area_rate * cycles, grid.h());
+  if (margin.left > grid.x_min && margin.right < grid.x_max) return;  // the flat with the margin fits: so does `end`
   // The cycles at which the flat reaches the nearer end of the window.
   const double d_window = std::min(model.profile.gap(grid.x_min), model.profile.gap(grid.x_max));
   const double reached = flat_at(model.profile, d_window, grid.h()).area / e.area_rate;

@@ -671,6 +671,34 @@ CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlo
   return cyclic_load(one, pair);
 }
 
+// The first response on the worn state w: the fastest wear max c p s (m/cycle), which sets the first step, and the
+// explicit stability limit 1.5 Δx/(E* c s_max) (cycles; 0 when nothing slips).
+struct FirstResponse {
+  double rate_max = 0.0, stability_limit = 0.0;
+};
+FirstResponse first_response(WearContact& contact, const std::vector<double>& w, const Model& model, double c) {
+  wear::CycleResponse r;
+  contact.respond(w, r);
+  double rate_max = 0.0, s_max = 0.0;
+  for (int i = 0; i < model.grid.n; ++i) {
+    rate_max = std::max(rate_max, c * r.p[i] * r.s[i]);
+    s_max = std::max(s_max, r.s[i]);
+  }
+  return {rate_max, wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), c, s_max)};
+}
+
+// The run by the scene's stepper from the first response's rate; nothing slipping, every record is the unworn one.
+void drive_by(WearRun& run, WearStepper stepper, double rate_max) {
+  if (rate_max == 0.0)
+    run.record_unworn();
+  else if (stepper == WearStepper::explicit_capped)
+    run.drive_explicit(rate_max);
+  else if (stepper == WearStepper::cycle_by_cycle)
+    run.drive_cycle_by_cycle();
+  else
+    run.drive_implicit(rate_max);
+}
+
 // load.blocks, run once in order: each block's cycle on the incremental route (one route for all, as the load
 // changes between them), solved on the profile the blocks before it wore. Each block is a wear run of its own from
 // the state the last one left: a fresh stepper (its step and its cached response belong to the old load) and
@@ -739,16 +767,9 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     if (resuming) {
       rate_max = resumed->at("rate_max").get<double>();
     } else {
-      wear::CycleResponse response;
-      contact.respond(w, response);
-      double s_max = 0.0;
-      for (int i = 0; i < model.grid.n; ++i) {
-        rate_max = std::max(rate_max, stage.rate_coefficient * response.p[i] * response.s[i]);
-        s_max = std::max(s_max, response.s[i]);
-      }
-      if (b == 0)
-        stage.stability_limit =
-            wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), stage.rate_coefficient, s_max);
+      const FirstResponse response = first_response(contact, w, model, stage.rate_coefficient);
+      rate_max = response.rate_max;
+      if (b == 0) stage.stability_limit = response.stability_limit;
     }
     WearStage part;  // the block's run; its records and counts join the stage's
     part.rate_coefficient = stage.rate_coefficient;
@@ -756,14 +777,7 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     part.stability_limit = stage.stability_limit;
     const BlockProgress progress{int(b), &stage.records, values(rate_max)};
     WearRun run(scene, model, block_control, contact, part, times, w, &progress);
-    if (rate_max == 0.0)
-      run.record_unworn();
-    else if (scene.wear->stepper == WearStepper::explicit_capped)
-      run.drive_explicit(rate_max);
-    else if (scene.wear->stepper == WearStepper::cycle_by_cycle)
-      run.drive_cycle_by_cycle();
-    else
-      run.drive_implicit(rate_max);
+    drive_by(run, scene.wear->stepper, rate_max);
     w = run.state();
     for (WearRecord& r : part.records) stage.records.push_back(std::move(r));
     stage.steps += part.steps, stage.rejected_steps += part.rejected_steps;
@@ -817,28 +831,13 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
 
   const std::unique_ptr<WearContact> contact = make_wear_contact(scene, model, cycle);
   stage.route = to_string(cycle.ran);
-  // The first response: the fastest wear, and the explicit stability limit.
-  wear::CycleResponse first;
-  contact->respond(std::vector<double>(std::size_t(model.grid.n), 0.0), first);
-  double rate_max = 0.0, s_max = 0.0;
-  for (int i = 0; i < model.grid.n; ++i) {
-    rate_max = std::max(rate_max, stage.rate_coefficient * first.p[i] * first.s[i]);
-    s_max = std::max(s_max, first.s[i]);
-  }
-  stage.stability_limit =
-      wear::explicit_stability_limit(model.grid.h(), model.pair.E_star(), stage.rate_coefficient, s_max);
+  const FirstResponse first =
+      first_response(*contact, std::vector<double>(std::size_t(model.grid.n), 0.0), model, stage.rate_coefficient);
+  stage.stability_limit = first.stability_limit;
 
   WearRun run(scene, model, control, *contact, stage);
-  if (rate_max == 0.0) {  // nothing slips: nothing wears
-    run.record_unworn();
-    return stage;
-  }
-  if (effect.stepper == WearStepper::explicit_capped)
-    run.drive_explicit(rate_max);
-  else if (effect.stepper == WearStepper::cycle_by_cycle)
-    run.drive_cycle_by_cycle();
-  else
-    run.drive_implicit(rate_max);
+  drive_by(run, effect.stepper, first.rate_max);
+  if (first.rate_max == 0.0) return stage;  // nothing slips: nothing wears
   stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
   stage.mean_iterations_implicit =
       double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));

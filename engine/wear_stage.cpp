@@ -264,11 +264,17 @@ set grid
                                     : fmt::format("{}*x with lines lw 2 dt 2 lc rgb '#000000' title 'initial rate "
                                                   "c ∫ p s dx, times N'",
                                                   num(rate0 * 1e12));
+  // Under displacement control the run settles below the asymptote (its stick zone grows over worn points): the
+  // limit of the zone it ends with is drawn too.
+  const std::string settled =
+      w.settled ? fmt::format("{} with lines lw 2 dt 3 lc rgb '#d62728' title 'limit of the final stick zone', ",
+                              num(w.settled->worn_area * 1e12))
+                : std::string();
   s += svg_and_png("wear_area",
-                   fmt::format("plot {} , "
+                   fmt::format("plot {} , {}"
                                "'wear_history.csv' skip 1 using ($1 > 0 ? $1 : NaN):($2*1e12) with linespoints pt 7 "
                                "ps 0.7 lw 1.5 lc rgb '#1f77b4' title 'fretwear'\n",
-                               reference));
+                               reference, settled));
   return s;
 }
 

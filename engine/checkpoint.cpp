@@ -248,7 +248,9 @@ json record_json(const WearRecord& r) {
           {"p", blob(r.p)},
           {"s", blob(r.s)},
           {"q", blob(r.q)},
-          {"block", r.block}};
+          {"block", r.block},
+          {"w_pad", blob(r.w_pad)},
+          {"w_specimen", blob(r.w_specimen)}};
 }
 
 WearRecord record_from(const json& j) {
@@ -270,6 +272,7 @@ WearRecord record_from(const json& j) {
   r.s = unblob(j.at("s"));
   r.q = unblob(j.at("q"));
   r.block = j.value("block", -1);
+  if (j.contains("w_pad")) r.w_pad = unblob(j.at("w_pad")), r.w_specimen = unblob(j.at("w_specimen"));
   return r;
 }
 

@@ -37,7 +37,9 @@ std::vector<State> life_states(const Scene& scene, const NormalResult& normal, c
   const double share = wear ? 1.0 - scene.wear->pad_fraction : 0.0;
   for (std::size_t k = 0; k < records.size(); ++k) {
     State s{records[k].cycles, records[k].phases, std::vector<double>(normal.state.p.size(), 0.0)};
-    if (wear)
+    if (wear && !wear->records[k].w_specimen.empty())  // the specimen's wear in its own frame (gross slip)
+      s.w_specimen = wear->records[k].w_specimen;
+    else if (wear)
       for (std::size_t i = 0; i < s.w_specimen.size(); ++i) s.w_specimen[i] = share * wear->records[k].w[i];
     states.push_back(std::move(s));
   }

@@ -12,8 +12,8 @@
 // contact/centre_stress.hpp at every cell centre (about 5 ms a state at 1024 cells), not the stress stage's maps,
 // which sample too few points across and none graded in depth (docs/METHODS.md, "Fatigue life"); the states' loads
 // are the stress stage's records (record_phases). Damage is carried by material
-// points fixed in the specimen: the specimen's wear w_s(x) = (1 − pad_fraction) w(x) (both bodies share one scar,
-// split by pad_fraction) brings a point at original depth y₀ to depth y₀ − w_s, and removes it past the surface,
+// points fixed in the specimen: the specimen's wear w_s(x) (its own frame's, WearRecord::w_specimen, in gross slip;
+// elsewhere (1 − pad_fraction) w(x), the bodies sharing one scar split by pad_fraction) brings a point at original depth y₀ to depth y₀ − w_s, and removes it past the surface,
 // taking its damage with it. The crack starts at the surface point x whose material first reaches D = 1:
 //     D(N) = Σ_{j<k} (N_{j+1} − N_j) / N_i(SWT_ℓ,j(x, w_s,k − w_s,j)) + (N − N_k) / N_i(SWT_ℓ,k(x, 0)),
 // solved in the interval of the state k in force. Without wear there is one state and N_i = N_i(SWT_ℓ(x, 0)), the

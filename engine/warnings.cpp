@@ -140,14 +140,15 @@ void wear_overshoot(const Scene& scene, const RunResult& r, std::vector<Warning>
 void shared_scar(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
   const CycleResult& c = r.cycle->result;
   if (c.regime != Regime::gross_slip || !(scene.wear->pad_fraction < 1.0)) return;
-  if (!(c.sliding_amplitude > 0.5 * r.normal.grid.h())) return;
+  if (!(c.sliding_amplitude > 0.5 * r.normal.grid.h()) || r.wear->frame_positions > 0) return;
   const Interval contact = r.wear->records.back().contact;
   out.push_back({"gross_slip_shared_scar",
                  fmt::format("in gross slip the specimen slides {:.3g} m each way under a contact {:.3g} m wide, but "
                              "both bodies' wear is computed as one profile in the pad's frame, split by pad_fraction: "
                              "the specimen's scar in its own frame (about {:.3g} m wide) is wider and shallower than "
                              "wear_specimen_m shows. The total worn area is right (Archard: k P times the distance "
-                             "slid); each body's own frame is not computed yet",
+                             "slid); each body's own frame is computed for similar bodies without load.blocks under the stepper "
+                             "\"implicit\" or \"cycle_by_cycle\"",
                              c.sliding_amplitude, contact.second - contact.first,
                              contact.second - contact.first + 2.0 * c.sliding_amplitude)});
 }

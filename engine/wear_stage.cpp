@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "contact/displacement_limit.hpp"
 #include "contact/reference_datum.hpp"
+#include "engine/body_frames.hpp"
 #include "engine/checkpoint.hpp"
 #include "engine/plot.hpp"
 #include "engine/simulation.hpp"
@@ -71,9 +72,11 @@ std::string profiles_csv(const Scene& scene, const NormalResult& n, const WearSt
   s.reserve(s.size() + (w.records.size() + 1) * std::size_t(n.grid.n) * 110);
   for (const WearRecord& r : w.records) {
     const std::string c = num(r.cycles);
+    const bool frames = !r.w_pad.empty();
     for (int i = 0; i < n.grid.n; ++i)
       s += fmt::format("{},{},{},{},{},{},{},{}\n", c, num(n.grid.x(i)), num(n.g0[i]), num(r.w[i]),
-                       num(pad * r.w[i]), num((1.0 - pad) * r.w[i]), num(r.p[i]), num(r.s[i]));
+                       num(frames ? r.w_pad[i] : pad * r.w[i]), num(frames ? r.w_specimen[i] : (1.0 - pad) * r.w[i]),
+                       num(r.p[i]), num(r.s[i]));
   }
   const WearAsymptote& a = w.asymptote;
   if (a.w.size() != std::size_t(n.grid.n) || a.p.size() != std::size_t(n.grid.n)) return s;
@@ -461,6 +464,13 @@ class WearRun {
   WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage)
       : WearRun(scene, model, control, contact, stage, record_times(*scene.wear), std::vector<double>(model.grid.n, 0.0),
                 nullptr) {}
+  // Gross slip with each body in its own frame: the state is [w_pad; w_spec] (engine/body_frames.hpp).
+  WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage,
+          BodyFrames& frames)
+      : WearRun(scene, model, control, contact, stage, record_times(*scene.wear),
+                std::vector<double>(2 * std::size_t(model.grid.n), 0.0), nullptr) {
+    frames_ = &frames;
+  }
   // One block of load.blocks: from the worn state w at times.front() through the record times, under its load.
   WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage,
           std::vector<double> times, std::vector<double> w, const BlockProgress* block)
@@ -487,6 +497,8 @@ class WearRun {
   void drive_explicit(double rate_max);
   void drive_cycle_by_cycle();
   void drive_implicit(double rate_max);
+  // The bodies' frames (the second constructor): by the stepper the scene names, "implicit" or "cycle_by_cycle".
+  void drive_frames(double rate_max);
 
  private:
   // The record of `state` at `cycles`: one response on it.
@@ -510,15 +522,21 @@ class WearRun {
   std::vector<double> w_;
   int block_;
   const BlockProgress* blocks_;
+  BodyFrames* frames_ = nullptr;
   clock::time_point last_checkpoint_;
 };
 
-void WearRun::record(const std::vector<double>& state, double cycles) {
+void WearRun::record(const std::vector<double>& z, double cycles) {
   const int n = model_.grid.n;
   const double h = model_.grid.h();
+  WearRecord rec;
+  if (frames_) {  // the gap's wear at mid-stroke, and each body's
+    rec.w_pad.assign(z.begin(), z.begin() + n);
+    rec.w_specimen.assign(z.begin() + n, z.end());
+  }
+  const std::vector<double> state = frames_ ? frames_->mid_stroke(z) : z;
   wear::CycleResponse r;
   contact_.respond(state, r);
-  WearRecord rec;
   rec.cycles = cycles;
   rec.w = state;
   rec.p = r.p;
@@ -663,6 +681,40 @@ void WearRun::drive_implicit(double rate_max) {
   stage_.rejected_steps = stepper.stats().rejected;
   stage_.implicit_solves = stepper.stats().implicit_solves;
   stage_.responses = stepper.stats().responses;
+}
+
+void WearRun::drive_frames(double rate_max) {
+  BodyFrames& frames = *frames_;
+  if (effect_.stepper == WearStepper::cycle_by_cycle) {
+    if (const std::string problem = cycle_by_cycle_problem(stage_.stability_limit); !problem.empty())
+      throw UnsupportedError(problem);
+    FramesCycleByCycle stepper;
+    const DriveState s = drive(
+        stepper, std::ref(frames), wear::kCycle, [] { return json::object(); }, [](const json&) {});
+    stage_.steps = int(s.steps);
+    stage_.responses = int(stepper.responses);
+  } else {
+    const double dN = std::max(1.0, effect_.tolerance * stage_.asymptote.max_depth / rate_max);
+    FramesWearStepper stepper(effect_.tolerance);
+    drive(
+        stepper, std::ref(frames), dN,
+        [&] {
+          json j = stepper.save();
+          j["solves"] = frames.solves(), j["iterations"] = frames.iterations();
+          return j;
+        },
+        [&](const json& j) {
+          stepper.restore(j);
+          frames.count(j.at("solves").get<long>(), j.at("iterations").get<long>());
+        });
+    stage_.steps = stepper.stats().accepted;
+    stage_.rejected_steps = stepper.stats().rejected;
+    stage_.unconverged_steps = stepper.stats().unconverged;
+    stage_.responses = stepper.stats().responses;
+  }
+  stage_.implicit_solves = int(frames.solves());
+  stage_.frame_iterations = frames.iterations();
+  stage_.frame_positions = int(frames.positions().shift.size());
 }
 
 }  // namespace
@@ -822,6 +874,41 @@ void settle(const Scene& scene, const Model& model, const CycleStage& cycle, Wea
 
 }  // namespace
 
+namespace {
+
+WearStage::Scar scar(const Grid& grid, const std::vector<double>& w) {
+  WearStage::Scar s;
+  for (double wi : w) s.max_depth = std::max(s.max_depth, wi), s.worn_area += wi * grid.h();
+  int left = -1, right = -1;
+  for (int i = 0; i < grid.n; ++i)
+    if (s.max_depth > 0.0 && w[std::size_t(i)] > kScarEdge * s.max_depth) right = i, left = left < 0 ? i : left;
+  if (left >= 0) s.extent = {grid.x(left) - 0.5 * grid.h(), grid.x(right) + 0.5 * grid.h()};
+  return s;
+}
+
+// Each body's scar at the last record: its own frame's, or its share of the shared profile.
+void scars(const Model& model, const WearEffect& effect, WearStage& stage) {
+  if (stage.records.empty()) return;
+  const WearRecord& last = stage.records.back();
+  std::vector<double> pad = last.w_pad, specimen = last.w_specimen;
+  if (pad.empty()) {
+    pad = specimen = last.w;
+    for (double& w : pad) w *= effect.pad_fraction;
+    for (double& w : specimen) w *= 1.0 - effect.pad_fraction;
+  }
+  stage.pad = scar(model.grid, pad);
+  stage.specimen = scar(model.grid, specimen);
+}
+
+}  // namespace
+
+bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleStage& cycle) {
+  const CycleResult& c = cycle.result;
+  return scene.wear && c.regime == Regime::gross_slip && scene.wear->pad_fraction < 1.0 &&
+         c.sliding_amplitude > 0.5 * model.grid.h() && model.pair.beta() == 0.0 && scene.blocks.empty() &&
+         scene.wear->stepper != WearStepper::explicit_capped;
+}
+
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearControl& control) {
   const WearEffect& effect = *scene.wear;
@@ -832,6 +919,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.asymptote = wear_asymptote(scene, model, normal);
   if (!scene.blocks.empty()) {
     run_blocks(scene, model, cycle, control, stage);
+    scars(model, effect, stage);
     return stage;
   }
 
@@ -841,9 +929,21 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
       first_response(*contact, std::vector<double>(std::size_t(model.grid.n), 0.0), model, stage.rate_coefficient);
   stage.stability_limit = first.stability_limit;
 
-  WearRun run(scene, model, control, *contact, stage);
-  drive_by(run, effect.stepper, first.rate_max);
+  auto* incremental = dynamic_cast<IncrementalContactResponse*>(contact.get());
+  if (incremental && first.rate_max > 0.0 && bodies_in_own_frames(scene, model, cycle)) {
+    const double c = stage.rate_coefficient, pad = effect.pad_fraction;
+    BodyFrames frames(
+        model, scene.P, c * pad, c * (1.0 - pad),
+        [incremental](std::span<const double> w, wear::CycleResponse& out) { incremental->respond(w, out); },
+        [incremental] { return incremental->last_cycle().sliding_amplitude; });
+    WearRun run(scene, model, control, *contact, stage, frames);
+    run.drive_frames(first.rate_max);
+  } else {
+    WearRun run(scene, model, control, *contact, stage);
+    drive_by(run, effect.stepper, first.rate_max);
+  }
   if (first.rate_max == 0.0) return stage;  // nothing slips: nothing wears
+  scars(model, effect, stage);
   stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
   stage.mean_iterations_implicit =
       double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
@@ -928,6 +1028,18 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
                             {"fraction", w.settled->worn_area > 0.0 ? json(last.worn_area / w.settled->worn_area)
                                                                      : json(nullptr)}};
   }
+  // Each body's scar, in its own frame where the run tracked the frames (gross slip), else its share of w.
+  auto body = [](const WearStage::Scar& b) {
+    return json{{"max_depth", b.max_depth},
+                {"worn_area", b.worn_area},
+                {"extent", {b.extent.first, b.extent.second}},
+                {"width", b.extent.second - b.extent.first}};
+  };
+  out["bodies"] = {{"frames", w.frame_positions > 0 ? "own" : "shared"},
+                   {"positions", w.frame_positions},
+                   {"pad", body(w.pad)},
+                   {"specimen", body(w.specimen)}};
+  if (w.frame_positions > 0) out["frame_iterations"] = w.frame_iterations;
   out["cycles_target"] = e.cycles;
   out["cycles_reached"] = w.cycles_reached;
   if (w.resumed_from) out["resumed_from"] = *w.resumed_from;

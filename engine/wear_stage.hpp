@@ -75,10 +75,17 @@ struct WearRecord {
   Interval contact{0.0, 0.0};   // the outer ends of the loaded contact
   Interval touching{0.0, 0.0};  // ... and of where the bodies touch, worn flats without load included
   double fraction = 0.0;  // worn area over the asymptote's (0 without one)
-  std::vector<double> w, p, s;  // per cell
+  std::vector<double> w, p, s;  // per cell; w is the gap's wear (at mid-stroke where the bodies' frames differ)
+  // Each body's wear in its own frame (engine/body_frames.hpp; gross slip): the pad's at its points x, the
+  // specimen's at its points X (X = x at mid-stroke), w = w_pad + w_specimen. Empty where both bodies share w,
+  // split by pad_fraction.
+  std::vector<double> w_pad, w_specimen;
   std::vector<double> q;        // shear traction at the top of the cycle per cell (Pa); the bottom is −q
   int block = -1;               // the block of load.blocks whose load it is under (from 0); -1 without blocks
 };
+
+// A body's scar ends where its wear falls below this share of its depth (WearStage::Scar).
+inline constexpr double kScarEdge = 0.01;
 
 struct WearStage {
   std::vector<WearRecord> records;
@@ -90,6 +97,17 @@ struct WearStage {
                                     // (cycles); 0 for the other steppers
   double explicit_max_step = 0.0;   // stepper "explicit": the longest accepted step (cycles), ≤ the cap
   int steps = 0, rejected_steps = 0, implicit_solves = 0, responses = 0;
+  // Gross slip: each body's wear in its own frame (engine/body_frames.hpp), at this many positions over the stroke;
+  // 0 where the bodies share one profile. The fixed point's passes, over the steps' Euler solutions.
+  int frame_positions = 0;
+  long frame_iterations = 0;
+  // Each body's scar at the last record (its own frame's where frame_positions > 0, else its share of w): the
+  // deepest point, the area, and where its wear exceeds kScarEdge of that depth (m).
+  struct Scar {
+    double max_depth = 0.0, worn_area = 0.0;
+    Interval extent{0.0, 0.0};
+  };
+  Scar pad, specimen;
   int unconverged_steps = 0;  // implicit steps rejected because a contact-implicit solve did not converge
   double mean_iterations_cycle = 0.0, mean_iterations_implicit = 0.0;  // CG iterations per warm-started solve
   bool interrupted = false;               // stopped on request before the last cycle (records hold what was done)
@@ -149,6 +167,13 @@ WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleSt
 // Why the stepper "cycle_by_cycle" cannot run at this explicit stability limit (cycles): a jump of one cycle past it
 // is unstable. Empty when it can (or nothing slips: limit 0).
 std::string cycle_by_cycle_problem(double stability_limit);
+
+// Whether the run tracks each body's wear in its own frame (engine/body_frames.hpp): gross slip (the sliding
+// amplitude over half a cell) with the specimen wearing (pad_fraction < 1), similar bodies (for β ≠ 0 the pressure
+// moves with the shear through the stroke, which the frames do not model), no load.blocks, and the stepper
+// "implicit" or "cycle_by_cycle". Elsewhere both bodies share one profile in the pad's frame, split by pad_fraction,
+// and in gross slip the warning gross_slip_shared_scar says so.
+bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleStage& cycle);
 
 // Runs the wear of a scene with the stepper it names (effects.wear.stepper): "implicit" (the default), "explicit"
 // (Dormand–Prince capped below the stability limit; small problems) or "cycle_by_cycle" (every cycle worn, the

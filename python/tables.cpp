@@ -171,20 +171,24 @@ Table profiles_table(const Scene& scene, const NormalResult& n, const WearStage&
   const WearAsymptote& a = w.asymptote;
   const bool asymptote = a.w.size() == cells && a.p.size() == cells;
   std::vector<double> cycles, x, g0, wear, wear_pad, wear_specimen, p, slip;
-  auto row = [&](double c, std::size_t i, double wi, double pi, double si) {
+  // Each body's own wear where the run tracked the frames (WearRecord::w_pad), else the split of w by pad_fraction.
+  auto row = [&](double c, std::size_t i, double wi, double wp, double ws, double pi, double si) {
     cycles.push_back(c);
     x.push_back(n.grid.x(int(i)));
     g0.push_back(n.g0[i]);
     wear.push_back(wi);
-    wear_pad.push_back(pad * wi);
-    wear_specimen.push_back((1.0 - pad) * wi);
+    wear_pad.push_back(wp);
+    wear_specimen.push_back(ws);
     p.push_back(pi);
     slip.push_back(si);
   };
   for (const WearRecord& r : w.records)
-    for (std::size_t i = 0; i < cells; ++i) row(r.cycles, i, r.w[i], r.p[i], r.s[i]);
+    for (std::size_t i = 0; i < cells; ++i)
+      row(r.cycles, i, r.w[i], r.w_pad.empty() ? pad * r.w[i] : r.w_pad[i],
+          r.w_specimen.empty() ? (1.0 - pad) * r.w[i] : r.w_specimen[i], r.p[i], r.s[i]);
   if (asymptote)
-    for (std::size_t i = 0; i < cells; ++i) row(std::numeric_limits<double>::infinity(), i, a.w[i], a.p[i], kNaN);
+    for (std::size_t i = 0; i < cells; ++i)
+      row(std::numeric_limits<double>::infinity(), i, a.w[i], pad * a.w[i], (1.0 - pad) * a.w[i], a.p[i], kNaN);
   t.add("cycles", "1", "cycles at the record (inf: the asymptote)", cycles);
   t.add("x", "m", "cell centre", x);
   t.add("gap0", "m", "initial gap", g0);

@@ -164,10 +164,14 @@ void BM_long_run(benchmark::State& st) {
   st.counters["responses"] = w.responses;
 }
 
-// examples/gross_slip_displacement_wear.json as it is (1024 cells, 18 000 cycles, displacement control in gross
-// slip: the incremental route); the model, the normal solve and the cycle stage outside the timing.
-void BM_gross_slip_example(benchmark::State& st) {
-  const Scene s = load_scene(std::string(FRETWEAR_SOURCE_DIR) + "/examples/gross_slip_displacement_wear.json");
+// examples/gross_slip_displacement_wear.json (18 000 cycles, displacement control in gross slip: the incremental
+// route) at `cells` cells: both bodies wearing, each in its own frame (engine/body_frames.hpp), or with
+// pad_fraction = 1, one profile (only the pad wears: the shared profile's stepper); the model, the normal solve and
+// the cycle stage outside the timing.
+void BM_gross_slip_example(benchmark::State& st, bool frames) {
+  Scene s = load_scene(std::string(FRETWEAR_SOURCE_DIR) + "/examples/gross_slip_displacement_wear.json");
+  s.cells = int(st.range(0));
+  if (!frames) s.wear->pad_fraction = 1.0;
   const Model model = make_model(s);
   const NormalResult normal = solve_normal(s, model);
   const CycleStage cycle = solve_cycle(s, model, normal);
@@ -179,6 +183,10 @@ void BM_gross_slip_example(benchmark::State& st) {
   st.counters["responses"] = w.responses;
   st.counters["implicit_iterations"] = w.mean_iterations_implicit;
   st.counters["worn_area"] = w.records.back().worn_area;
+  st.counters["positions"] = w.frame_positions;
+  st.counters["passes"] = double(w.frame_iterations);
+  st.counters["pad_depth"] = w.pad.max_depth;
+  st.counters["specimen_depth"] = w.specimen.max_depth;
 }
 
 const bool registered = [] {
@@ -188,7 +196,15 @@ const bool registered = [] {
       ->Unit(benchmark::kMillisecond)
       ->Iterations(1)
       ->Repetitions(3);
-  benchmark::RegisterBenchmark("gross_slip_example", BM_gross_slip_example)
+  benchmark::RegisterBenchmark("gross_slip_example/frames", BM_gross_slip_example, true)
+      ->Arg(256)
+      ->Arg(512)
+      ->Arg(1024)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1)
+      ->Repetitions(3);
+  benchmark::RegisterBenchmark("gross_slip_example/pad_only", BM_gross_slip_example, false)
+      ->Arg(1024)
       ->Unit(benchmark::kMillisecond)
       ->Iterations(1)
       ->Repetitions(3);

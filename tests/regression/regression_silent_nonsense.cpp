@@ -123,13 +123,17 @@ TEST_CASE("a slip zone narrower than the grid resolves warns, and so does a worn
     "effects": {"wear": {"k": 1e-12, "cycles": 1e3}}, "output": {"plots": false}})").empty());
 }
 
-TEST_CASE("gross-slip wear with the specimen wearing says its scar is the shared profile's, and only then") {
+TEST_CASE("gross-slip wear says the specimen's scar is the shared profile's where its own frame is not computed") {
   // examples/gross_slip_displacement_wear.json, shortened: U = 24 µm each way, cells of 1.2 µm.
   const std::string gross = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
     "load": {"P": 18500, "control": "displacement", "delta": 25e-6},
     "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
     "output": {"plots": false}, "effects": {"wear": {"k": 5e-14, "cycles": 2000, "pad_fraction": )";
-  CHECK(warning_codes(gross + "0.5}}}") == std::set<std::string>{"gross_slip_shared_scar"});
+  // Under the stepper "explicit" both bodies share one profile (engine/wear_stage.hpp, bodies_in_own_frames).
+  CHECK(warning_codes(gross + R"(0.5, "stepper": "explicit"}}})") ==
+        std::set<std::string>{"gross_slip_shared_scar"});
+  // The default stepper tracks each body in its own frame: nothing to warn of.
+  CHECK(warning_codes(gross + "0.5}}}").empty());
   // Only the pad wears: its frame is the one computed.
   CHECK(warning_codes(gross + "1.0}}}").empty());
   // Partial slip (δ = 1 µm): the frames differ by the slip alone.

@@ -45,9 +45,12 @@ constexpr int kEdgeCells = 16;
 // cells at 8–15 times it).
 constexpr double kEdgePressureFactor = 1.5;
 
+// Only the pad wears (pad_fraction 1): the shared profile is then the pad's own frame, and this is the shared
+// profile's stepper (each body's own frame: tests/verification/test_wear_body_frames.cpp).
 Scene example(int cells, WearStepper stepper) {
   Scene s = load_scene(std::string(FRETWEAR_SOURCE_DIR) + "/examples/gross_slip_displacement_wear.json");
   s.cells = cells;
+  s.wear->pad_fraction = 1.0;
   s.wear->cycles = kCycles;
   s.wear->stepper = stepper;
   s.wear->record = {kCycles};

@@ -1,0 +1,287 @@
+#include "engine/body_frames.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "common/error.hpp"
+#include "engine/checkpoint.hpp"
+
+namespace fretwear {
+
+using boost::numeric::odeint::controlled_step_result;
+
+FramePositions frame_positions(double U, double h) {
+  const int M = std::min(kFrameIntervals, std::max(1, int(std::lround(U / h))));
+  FramePositions f;
+  for (int k = -M; k <= M; ++k) {
+    f.shift.push_back(double(k) * U / (double(M) * h));
+    f.weight.push_back((k == -M || k == M) ? 0.25 / M : 0.5 / M);
+  }
+  return f;
+}
+
+BodyFrames::BodyFrames(const Model& model, double P, double c_pad, double c_specimen, Respond respond,
+                       Amplitude amplitude)
+    : model_(model),
+      n_(model.grid.n),
+      P_(P),
+      c_pad_(c_pad),
+      c_spec_(c_specimen),
+      respond_(std::move(respond)),
+      amplitude_(std::move(amplitude)),
+      solver_(*model.kernel, [&model] {
+        NormalSolverOptions o;
+        o.proportioning = kWearProportioning;
+        o.max_iterations = std::max(2000, model.grid.n);
+        return o;
+      }()) {}
+
+std::vector<double> BodyFrames::mid_stroke(std::span<const double> z) const {
+  std::vector<double> w(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i) w[std::size_t(i)] = z[std::size_t(i)] + z[std::size_t(n_ + i)];
+  return w;
+}
+
+void BodyFrames::respond(std::span<const double> z, wear::CycleResponse& out) {
+  respond_(mid_stroke(z), out);
+  s_ = out.slip_if_touching();
+  positions_ = frame_positions(amplitude_(), model_.grid.h());
+}
+
+// Pad cell i at position k sits over the specimen's point i + u_k (in cells): between cells j and j + 1, read with
+// weights 1 − f and f. A specimen point beyond the window holds no wear; a loaded cell that would deposit there is
+// an error of the window (deposit() throws).
+void BodyFrames::read(std::span<const double> v, std::size_t k, std::vector<double>& out) const {
+  const double u = positions_.shift[k];
+  for (int i = 0; i < n_; ++i) {
+    const double t = double(i) + u;
+    const int j = int(std::floor(t));
+    const double f = t - double(j);
+    double value = 0.0;
+    if (j >= 0 && j < n_) value += (1.0 - f) * v[std::size_t(j)];
+    if (j + 1 >= 0 && j + 1 < n_ && f > 0.0) value += f * v[std::size_t(j + 1)];
+    out[std::size_t(i)] += value;
+  }
+}
+
+void BodyFrames::deposit(std::span<const double> v, std::size_t k, std::vector<double>& out) const {
+  const double u = positions_.shift[k];
+  for (int i = 0; i < n_; ++i) {
+    const double value = v[std::size_t(i)];
+    if (value == 0.0) continue;
+    const double t = double(i) + u;
+    const int j = int(std::floor(t));
+    const double f = t - double(j);
+    if (j < 0 || j + 1 >= n_)
+      throw InputError(fmt::format(
+          "wear: the specimen's scar reaches the end of grid.window (the pad slides {:.3g} m each way over the "
+          "specimen): widen grid.window",
+          std::abs(u) * model_.grid.h()));
+    out[std::size_t(j)] += (1.0 - f) * value;
+    if (f > 0.0) out[std::size_t(j + 1)] += f * value;
+  }
+}
+
+void BodyFrames::gap_at(std::span<const double> z, std::size_t k, std::span<const double> extra,
+                        std::vector<double>& g) const {
+  g.assign(std::size_t(n_), 0.0);
+  read(z.subspan(std::size_t(n_)), k, g);
+  for (int i = 0; i < n_; ++i) {
+    const std::size_t a = std::size_t(i);
+    g[a] += model_.g0[a] + z[a] + (extra.empty() ? 0.0 : extra[a]);
+  }
+}
+
+void BodyFrames::pressures(std::span<const double> z, std::vector<std::vector<double>>& p) {
+  const std::size_t K = positions_.shift.size();
+  p.resize(K);
+  std::vector<double> g;
+  ContactState state;
+  for (std::size_t k = 0; k < K; ++k) {
+    gap_at(z, k, {}, g);
+    state.p = p[k];
+    const SolveSummary s = solver_.solve(g, P_, state);
+    ++solves_;
+    if (!s.converged())
+      throw ConvergenceError(fmt::format("wear: the normal solve at a position of the stroke stopped ({}) with "
+                                         "residual {:.3g}",
+                                         to_string(s.termination), s.residual));
+    p[k] = state.p;
+  }
+}
+
+void BodyFrames::rates(const std::vector<std::vector<double>>& p, std::vector<double>& dz) const {
+  dz.assign(std::size_t(2 * n_), 0.0);
+  std::vector<double> ps(static_cast<std::size_t>(n_)), spec(static_cast<std::size_t>(n_), 0.0);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const double nu = positions_.weight[k];
+    for (int i = 0; i < n_; ++i) {
+      const std::size_t a = std::size_t(i);
+      const double pi = std::max(0.0, p[k][a]);
+      dz[a] += c_pad_ * nu * pi * s_[a];
+      ps[a] = c_spec_ * nu * pi * s_[a];
+    }
+    deposit(ps, k, spec);
+  }
+  for (int i = 0; i < n_; ++i) dz[std::size_t(n_ + i)] = spec[std::size_t(i)];
+}
+
+bool BodyFrames::euler(std::span<const double> z, double dN, std::vector<std::vector<double>>& p,
+                       std::vector<double>& out) {
+  const std::size_t K = positions_.shift.size();
+  const std::size_t n = std::size_t(n_);
+  const Eigen::Index size = Eigen::Index(K * n);
+  std::vector<double> d(n), dz, extra(n), g;
+  for (std::size_t i = 0; i < n; ++i) d[i] = dN * (c_pad_ + c_spec_) * s_[i];
+  ContactState state;
+  // Anderson's mixing of the passes (docs/METHODS.md): x the iterate, G(x) the pass's result, f = G(x) − x; the next
+  // iterate is G(x) − ΔG γ with γ the least-squares fit of f by the last kFrameMemory differences ΔF.
+  Eigen::VectorXd x(size), gx(size), f(size), f_last, g_last;
+  for (std::size_t k = 0; k < K; ++k)
+    for (std::size_t i = 0; i < n; ++i) x[Eigen::Index(k * n + i)] = std::max(0.0, p[k][i]);
+  std::vector<Eigen::VectorXd> dF, dG;
+  for (int pass = 0; pass < kFramePasses; ++pass) {
+    ++iterations_;
+    for (std::size_t k = 0; k < K; ++k)
+      for (std::size_t i = 0; i < n; ++i) p[k][i] = x[Eigen::Index(k * n + i)];
+    rates(p, dz);
+    double change = 0.0, largest = 0.0;
+    for (std::size_t k = 0; k < K; ++k) {
+      // ΔN [R_pad + S_k R_spec] − D p_k at the iterate: what the solve's own shift does not carry.
+      std::fill(extra.begin(), extra.end(), 0.0);
+      read(std::span<const double>(dz).subspan(n), k, extra);
+      for (std::size_t i = 0; i < n; ++i) extra[i] = dN * (extra[i] + dz[i]) - d[i] * p[k][i];
+      gap_at(z, k, extra, g);
+      state.p = p[k];
+      const SolveSummary s = solver_.solve(g, P_, state, d);
+      ++solves_;
+      if (!s.converged()) {
+        last_unconverged = s;
+        return false;
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Index a = Eigen::Index(k * n + i);
+        gx[a] = state.p[i];
+        change = std::max(change, std::abs(state.p[i] - p[k][i]));
+        largest = std::max(largest, state.p[i]);
+      }
+    }
+    if (change <= kFramePassTolerance * largest) {
+      for (std::size_t k = 0; k < K; ++k)
+        for (std::size_t i = 0; i < n; ++i) p[k][i] = gx[Eigen::Index(k * n + i)];
+      rates(p, dz);
+      out.resize(2 * n);
+      for (std::size_t i = 0; i < 2 * n; ++i) out[i] = z[i] + dN * dz[i];
+      return true;
+    }
+    f = gx - x;
+    if (f_last.size() == size) {
+      dF.push_back(f - f_last), dG.push_back(gx - g_last);
+      if (int(dF.size()) > kFrameMemory) dF.erase(dF.begin()), dG.erase(dG.begin());
+    }
+    f_last = f, g_last = gx;
+    x = gx;
+    if (!dF.empty()) {
+      Eigen::MatrixXd F(size, Eigen::Index(dF.size()));
+      for (std::size_t c = 0; c < dF.size(); ++c) F.col(Eigen::Index(c)) = dF[c];
+      const Eigen::VectorXd gamma = F.colPivHouseholderQr().solve(f);
+      for (std::size_t c = 0; c < dG.size(); ++c) x -= gamma[Eigen::Index(c)] * dG[c];
+    }
+    x = x.cwiseMax(0.0);
+  }
+  return false;
+}
+
+controlled_step_result FramesWearStepper::try_step(std::reference_wrapper<BodyFrames> system, state_type& z,
+                                                   time_type& N, time_type& dN) {
+  BodyFrames& frames = system.get();
+  wear::CycleResponse r;
+  frames.respond(z, r);
+  ++stats_.responses;
+  if (p_start_.size() != frames.positions().shift.size()) {
+    p_start_.assign(frames.positions().shift.size(), r.p);
+    frames.pressures(z, p_start_);
+  }
+
+  std::vector<std::vector<double>> p_full = p_start_, p_half = p_start_;
+  state_type z_full, z_half, z_two;
+  bool solved = frames.euler(z, dN, p_full, z_full) && frames.euler(z, 0.5 * dN, p_half, z_half);
+  if (solved) {
+    frames.respond(z_half, r);
+    ++stats_.responses;
+    std::vector<std::vector<double>> p_mid = p_half;
+    if (p_mid.size() != frames.positions().shift.size()) p_mid.assign(frames.positions().shift.size(), r.p);
+    solved = frames.euler(z_half, 0.5 * dN, p_mid, z_two);
+    if (solved) p_half = std::move(p_mid);
+  }
+  if (!solved) {
+    ++stats_.rejected;
+    ++stats_.unconverged;
+    if (dN <= 1.0)
+      throw ConvergenceError(fmt::format("wear: the implicit step of the two bodies' frames did not converge at "
+                                         "cycle {:.0f} even for a jump of {:.3g} cycles (residual {:.3g})",
+                                         N, dN, frames.last_unconverged.residual));
+    dN *= 0.25;
+    return controlled_step_result::fail;
+  }
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    scale = std::max(scale, std::abs(z_two[i]));
+    diff = std::max(diff, std::abs(z_two[i] - z_full[i]));
+  }
+  const double err = scale > 0.0 ? diff / (tolerance_ * scale) : 0.0;
+  stats_.last_error = err;
+  if (!(err <= 1.0)) {
+    ++stats_.rejected;
+    if (dN < wear::kMinJump)
+      throw ConvergenceError(fmt::format("wear: the two bodies' frames' error estimate does not fall with the jump "
+                                         "(error {:.3g} times the tolerance {:.3g} at a jump of {:.3g} cycles, at "
+                                         "cycle {:.6g})",
+                                         err, tolerance_, dN, N));
+    dN *= std::clamp(0.9 / std::sqrt(err), 0.2, 0.9);
+    return controlled_step_result::fail;
+  }
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] = std::max(z[i], 2.0 * z_two[i] - z_full[i]);
+  N += dN;
+  dN *= err > 0.0 ? std::clamp(0.9 / std::sqrt(err), 1.0, 4.0) : 4.0;
+  ++stats_.accepted;
+  p_start_ = std::move(p_half);
+  return controlled_step_result::success;
+}
+
+nlohmann::json FramesWearStepper::save() const {
+  nlohmann::json p = nlohmann::json::array();
+  for (const auto& v : p_start_) p.push_back(blob(v));
+  return {{"accepted", stats_.accepted},     {"rejected", stats_.rejected}, {"unconverged", stats_.unconverged},
+          {"responses", stats_.responses},   {"last_error", stats_.last_error}, {"p_start", std::move(p)}};
+}
+
+void FramesWearStepper::restore(const nlohmann::json& j) {
+  stats_.accepted = j.at("accepted").get<int>();
+  stats_.rejected = j.at("rejected").get<int>();
+  stats_.unconverged = j.at("unconverged").get<int>();
+  stats_.responses = j.at("responses").get<int>();
+  stats_.last_error = j.at("last_error").get<double>();
+  p_start_.clear();
+  for (const auto& v : j.at("p_start")) p_start_.push_back(unblob(v));
+}
+
+controlled_step_result FramesCycleByCycle::try_step(std::reference_wrapper<BodyFrames> system, state_type& z,
+                                                    double& N, double& dN) {
+  BodyFrames& frames = system.get();
+  wear::CycleResponse r;
+  frames.respond(z, r);
+  ++responses;
+  if (p_.size() != frames.positions().shift.size()) p_.assign(frames.positions().shift.size(), r.p);
+  frames.pressures(z, p_);
+  std::vector<double> dz;
+  frames.rates(p_, dz);
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] += dN * dz[i];
+  N += dN;
+  return controlled_step_result::success;
+}
+
+}  // namespace fretwear

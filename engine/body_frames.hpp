@@ -1,0 +1,160 @@
+// Each body's wear in its own frame, in gross slip (docs/METHODS.md, "Each body's scar in its own frame").
+//
+// In gross slip the pad slides over the specimen by ±U each cycle, so a point of the specimen meets the whole
+// stroke of pad points while a point of the pad meets the whole stroke of specimen points. The state is therefore
+// two profiles, z = [w_pad; w_spec]: w_pad(x) at the pad's points x (the grid), w_spec(X) at the specimen's points X
+// (the same grid: at mid-stroke X = x). With the pad displaced by u relative to the specimen the gap at pad point x is
+//     g_u(x) = g0(x) + w_pad(x) + w_spec(x + u),
+// and its pressure p_u(x) is the normal solution under P for that gap (similar bodies: the shear does not move it).
+// Over a cycle the relative position runs over [−U, U] twice each way, uniformly in distance, so with the slip
+// travelled s(x) per cycle (4U plus the elastic part, the cycle's response at mid-stroke) Archard's law gives
+//     dw_pad/dN (x) = c_pad s(x) ⟨p_u(x)⟩,      dw_spec/dN (X) = c_spec ⟨(p_u s)(X − u)⟩,
+// ⟨·⟩ the mean over u ∈ [−U, U]. The mean is taken by the trapezoid rule on positions u_k = k U / M, k = −M … M,
+// M = min(kFrameIntervals, max(1, round(U / Δx))), about a cell apart while the stroke spans few cells. The
+// specimen's profile is read between its cells by linear interpolation, and its wear deposited by the transpose of
+// that reading, so that Σ h dw_spec = Σ h c_spec ⟨p s⟩ exactly. Measured on the gross-slip example, every cycle worn
+// at 512 cells against all 21 whole-cell positions (docs/PERFORMANCE.md, "Each body's frame in gross slip"): 9
+// positions give each body's depth to 2e-4 and 5e-4 and the scars' ends to the cell, 5 positions to 1.2e-3.
+//
+// The step (backward Euler in the pressures, with the slip s lagged at the step's start as the shared profile's
+// contact-implicit step lags it, wear/implicit_stepper.hpp): the end-of-step pressures p_k solve
+//     p_k = normal solution for the gap  g0 + w_pad + S_k w_spec + ΔN [R_pad(p) + S_k R_spec(p)],
+// R_pad, R_spec the rates above and S_k the reading of the specimen at position k. Every position's gap carries
+// every position's wear, so the system couples them. It is approached by the passes
+//     p_k^{j+1} = normal solution for  g0 + w_pad + S_k w_spec + ΔN [R_pad(p^j) + S_k R_spec(p^j) − D p_k^j] + D p_k^{j+1},
+// from p^0 the pressures at the step's start, with D = (c_pad + c_spec) s ΔN the normal solver's diagonal shift:
+// the wear position k's own pressure would deposit were all positions alike is implicit within each solve (so the
+// contact's own stiffness never limits the step, as in the shared profile's step), and the difference between
+// positions is carried from the last pass. kFramePasses passes are made (fewer when they stop changing the pressure
+// by kFramePassTolerance of its largest value), and the step's error estimate judges the result.
+// Measured on examples/gross_slip_displacement_wear.json (docs/PERFORMANCE.md, "Each body's frame in gross slip"):
+// one pass is stable but its steps shrink with the grid (a cell-wide alternation of w_pad against w_spec is invisible
+// to the positions shifted by an even number of cells and doubled for the odd ones, and one pass leaves that coupling
+// lagged); the fixed point itself converges slowly at large jumps (thirty passes did not reach 1e-7 beyond about 30
+// cycles at 256 cells); 2, 4 and 8 passes took 764, 527 and 367 steps at 1024 cells in about the same time.
+//
+// Error control as the shared profile's (wear/implicit_stepper.hpp): Richardson extrapolation over one step of ΔN
+// and two of ΔN/2 (s refreshed at the half step), err = max_i |two − one| / (τ max_i z) over both profiles,
+// ΔN ← ΔN 0.9/√err, wear never decreasing.
+#pragma once
+
+#include <functional>
+#include <span>
+#include <vector>
+
+#include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
+#include <boost/numeric/odeint/stepper/stepper_categories.hpp>
+#include <nlohmann/json.hpp>
+
+#include "contact/normal_solver.hpp"
+#include "engine/setup.hpp"
+#include "wear/contact_response.hpp"
+
+namespace fretwear {
+
+inline constexpr int kFrameIntervals = 4;                 // M's cap: 9 positions over the stroke
+inline constexpr int kFramePasses = 40;                   // passes of the step's coupling between positions
+inline constexpr double kFramePassTolerance = 1e-3;       // converged when one changes p by less (relative to max p)
+inline constexpr int kFrameMemory = 6;                    // Anderson's mixing: the differences it fits
+
+// The stroke seen by the frames: positions u_k (in cells, fractional) and their trapezoid weights (sum 1).
+struct FramePositions {
+  std::vector<double> shift;   // u_k / Δx
+  std::vector<double> weight;  // ν_k
+};
+FramePositions frame_positions(double U, double h);
+
+// The two bodies' wear in their own frames: pressures at every position, rates, and the implicit step. The cycle's
+// response at mid-stroke (the slip s and the sliding amplitude U) comes from `respond`, called with the gap's wear
+// at mid-stroke w_pad + w_spec.
+class BodyFrames {
+ public:
+  // respond(w, out) answers the steady cycle on the profile worn by w (the wear stage's contact); U(out) its
+  // sliding amplitude (m).
+  using Respond = std::function<void(std::span<const double>, wear::CycleResponse&)>;
+  using Amplitude = std::function<double()>;
+  BodyFrames(const Model& model, double P, double c_pad, double c_specimen, Respond respond, Amplitude amplitude);
+
+  int cells() const { return n_; }
+  double c_pad() const { return c_pad_; }
+  double c_specimen() const { return c_spec_; }
+  // The gap's wear at mid-stroke, w_pad + w_spec, of z = [w_pad; w_spec].
+  std::vector<double> mid_stroke(std::span<const double> z) const;
+  // The cycle at mid-stroke on z (out), and the positions and slip the step lags from it.
+  void respond(std::span<const double> z, wear::CycleResponse& out);
+  // The pressures p_k on z at the positions of the last respond() (warm-started from p), and dz/dN from them.
+  void pressures(std::span<const double> z, std::vector<std::vector<double>>& p);
+  void rates(const std::vector<std::vector<double>>& p, std::vector<double>& dz) const;
+  // One backward-Euler step of ΔN from z at the positions and slip of the last respond(); p: the start's pressures
+  // on entry (warm start), the end's on return. False when a normal solve did not converge.
+  bool euler(std::span<const double> z, double dN, std::vector<std::vector<double>>& p, std::vector<double>& out);
+
+  const FramePositions& positions() const { return positions_; }
+  long solves() const { return solves_; }
+  long iterations() const { return iterations_; }  // passes over the positions, over all steps
+  void count(long solves, long iterations) { solves_ = solves, iterations_ = iterations; }
+  SolveSummary last_unconverged;
+
+ private:
+  // The gap of position k on z, plus extra (empty: none).
+  void gap_at(std::span<const double> z, std::size_t k, std::span<const double> extra, std::vector<double>& g) const;
+  // S_k v: the specimen's v read at the pad's cells, position k; and its transpose, added to out.
+  void read(std::span<const double> v, std::size_t k, std::vector<double>& out) const;
+  void deposit(std::span<const double> v, std::size_t k, std::vector<double>& out) const;
+
+  const Model& model_;
+  int n_;
+  double P_, c_pad_, c_spec_;
+  Respond respond_;
+  Amplitude amplitude_;
+  NormalSolver solver_;
+  FramePositions positions_;
+  std::vector<double> s_;  // the slip lagged: the last response's slip_if_touching
+  long solves_ = 0, iterations_ = 0;
+};
+
+struct FramesStepperStats {
+  int accepted = 0, rejected = 0, unconverged = 0, responses = 0;
+  double last_error = 0.0;
+};
+
+// The controlled stepper on z (Boost.Odeint's controlled-stepper interface, as wear::ImplicitWearStepper).
+class FramesWearStepper {
+ public:
+  using state_type = std::vector<double>;
+  using deriv_type = std::vector<double>;
+  using value_type = double;
+  using time_type = double;
+  using order_type = unsigned short;
+  using stepper_category = boost::numeric::odeint::controlled_stepper_tag;
+
+  explicit FramesWearStepper(double tolerance) : tolerance_(tolerance) {}
+  static constexpr order_type order() { return 2; }
+
+  boost::numeric::odeint::controlled_step_result try_step(std::reference_wrapper<BodyFrames> system,
+                                                          state_type& z, time_type& N, time_type& dN);
+
+  const FramesStepperStats& stats() const { return stats_; }
+  nlohmann::json save() const;
+  void restore(const nlohmann::json& j);
+
+ private:
+  double tolerance_;
+  FramesStepperStats stats_;
+  std::vector<std::vector<double>> p_start_;  // the pressures at the last accepted state (warm starts)
+};
+
+// One cycle at a time, every position: the reference of the step above (effects.wear.stepper "cycle_by_cycle").
+class FramesCycleByCycle {
+ public:
+  using state_type = std::vector<double>;
+  using stepper_category = boost::numeric::odeint::controlled_stepper_tag;
+  boost::numeric::odeint::controlled_step_result try_step(std::reference_wrapper<BodyFrames> system,
+                                                          state_type& z, double& N, double& dN);
+  long responses = 0;
+
+ private:
+  std::vector<std::vector<double>> p_;
+};
+
+}  // namespace fretwear

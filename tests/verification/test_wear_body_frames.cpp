@@ -1,0 +1,152 @@
+// Each body's wear in its own frame in gross slip (engine/body_frames.hpp), on examples/gross_slip_displacement_wear.json
+// shortened to 5000 cycles: a 6 mm cylinder on a flat, P = 18.5 kN/m, f = 0.9, δ = ±25 µm (the bodies slide
+// U = 24.3 µm each way), Archard k = 5e-14 1/Pa shared equally. The pad's points stay under the contact; the
+// specimen's meet the whole stroke, so its scar is wider by up to 2U and shallower, and the pad's deeper.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "engine/body_frames.hpp"
+#include "engine/scene.hpp"
+#include "engine/simulation.hpp"
+#include "engine/wear_stage.hpp"
+
+using namespace fretwear;
+
+namespace {
+
+constexpr double kCycles = 5000;
+// The reference: every cycle worn at every position, on 256 cells (the explicit stability limit there is 13 cycles).
+constexpr int kReferenceCells = 256;
+// Each body's depth and area within half a percent of the reference: the stepper's tolerance (1e-3 of the depth per
+// step) over some two hundred steps; on the reference's own grid the step agrees to about 1e-5, and the grids
+// agree to 2e-4 (the rest is the positions' and the cells' discretisation, the same in both).
+constexpr double kAgreement = 5e-3;
+// Alternation inside the contact, as tests/verification/test_wear_gross_slip.cpp measures it: about 1 for open
+// alternate cells. The discrete positions leave a ripple of their own, at the positions' spacing, in the every-cycle
+// solution too (0.021 at 512 cells, 0.015 at 1024; the step gives the same to 1e-3); a stepper that lagged the
+// coupling between positions opened every other cell. And the newest edge cells: each of the first kEdgeCells loaded
+// cells within kEdgeAgreement of the every-cycle solution's on the same grid (a step that left the coupling between
+// positions lagged opened every other one of them at 1024 cells).
+constexpr double kAlternationTolerance = 0.05;
+constexpr int kInteriorMargin = 16;  // the alternation is measured this many cells inside the contact's ends
+constexpr int kEdgeCells = 8;
+constexpr double kEdgeAgreement = 0.02;
+// The two bodies' areas stand in the ratio of their coefficients (Archard: each wears c_body ∫ p s over the same
+// positions; the reading of the specimen and its deposit are transposes, so nothing is lost): to round-off cycle by
+// cycle, and up to the step's rule that wear never decreases, which clips the extrapolation cell by cell (7e-6
+// measured at 1024 cells), with the implicit stepper.
+constexpr double kAreaRatioExact = 1e-12;
+constexpr double kAreaRatioClipped = 1e-4;
+
+Scene example(int cells, WearStepper stepper) {
+  Scene s = load_scene(std::string(FRETWEAR_SOURCE_DIR) + "/examples/gross_slip_displacement_wear.json");
+  s.cells = cells;
+  s.wear->cycles = kCycles;
+  s.wear->stepper = stepper;
+  s.wear->record = {kCycles};
+  return s;
+}
+
+struct Run {
+  WearStage stage;
+  double h = 0.0, U = 0.0;
+};
+
+Run run(const Scene& s) {
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  const CycleStage c = solve_cycle(s, m, n);
+  return {run_wear(s, m, n, c, {}), m.grid.h(), c.result.sliding_amplitude};
+}
+
+std::pair<int, int> loaded(const std::vector<double>& p) {
+  int first = -1, last = -1;
+  for (int i = 0; i < int(p.size()); ++i)
+    if (p[i] > 0.0) last = i, first = first < 0 ? i : first;
+  return {first, last};
+}
+
+double relative(double a, double b) { return std::abs(a / b - 1.0); }
+
+}  // namespace
+
+TEST_CASE("body frames: the stroke's positions are symmetric, weigh one, and span it") {
+  const double h = 1e-6;
+  const FramePositions few = frame_positions(3e-6, h);  // 3 cells each way: 7 positions, one a cell
+  REQUIRE(few.shift.size() == 7);
+  for (std::size_t k = 0; k < few.shift.size(); ++k) CHECK(few.shift[k] == doctest::Approx(double(k) - 3.0));
+  CHECK(frame_positions(0.4e-6, h).shift.size() == 3);  // a stroke under a cell: its ends and the middle
+  const FramePositions many = frame_positions(24.3e-6, h);  // capped: 2 kFrameIntervals + 1, the stroke's ends included
+  REQUIRE(many.shift.size() == std::size_t(2 * kFrameIntervals + 1));
+  CHECK(many.shift.front() == doctest::Approx(-24.3));
+  CHECK(many.shift.back() == doctest::Approx(24.3));
+  for (const FramePositions* f : {&few, &many}) {
+    CHECK(std::accumulate(f->weight.begin(), f->weight.end(), 0.0) == doctest::Approx(1.0).epsilon(1e-14));
+    for (std::size_t k = 0; k < f->shift.size(); ++k) {
+      CHECK(f->shift[k] == doctest::Approx(-f->shift[f->shift.size() - 1 - k]));
+      CHECK(f->weight[k] == doctest::Approx(f->weight[f->shift.size() - 1 - k]));
+    }
+  }
+}
+
+TEST_CASE("body frames: in gross slip each body's scar follows every cycle worn, and the specimen's spreads over the "
+          "stroke") {
+  const Run ref = run(example(kReferenceCells, WearStepper::cycle_by_cycle));
+  REQUIRE(ref.stage.frame_positions > 0);
+  const WearStage::Scar& pad_ref = ref.stage.pad;
+  const WearStage::Scar& spec_ref = ref.stage.specimen;
+  // The frames matter: the specimen's scar is wider by more than one sliding amplitude and by at most two (plus a cell
+  // each side for the threshold), and shallower; with one shared profile both would be the same.
+  const double widening = (spec_ref.extent.second - spec_ref.extent.first) - (pad_ref.extent.second - pad_ref.extent.first);
+  CHECK(widening > ref.U);
+  CHECK(widening < 2.0 * ref.U + 2.0 * ref.h);
+  CHECK(spec_ref.max_depth < 0.9 * pad_ref.max_depth);
+  CHECK(relative(pad_ref.worn_area, spec_ref.worn_area) < kAreaRatioExact);
+
+  for (const int cells : {256, 512, 1024}) {
+    CAPTURE(cells);
+    const Run r = run(example(cells, WearStepper::implicit));
+    REQUIRE(r.stage.frame_positions > 0);
+    CHECK(relative(r.stage.pad.max_depth, pad_ref.max_depth) < kAgreement);
+    CHECK(relative(r.stage.specimen.max_depth, spec_ref.max_depth) < kAgreement);
+    CHECK(relative(r.stage.pad.worn_area, pad_ref.worn_area) < kAgreement);
+    CHECK(relative(r.stage.specimen.worn_area, spec_ref.worn_area) < kAgreement);
+    CHECK(relative(r.stage.pad.worn_area, r.stage.specimen.worn_area) < kAreaRatioClipped);
+    // The scars' ends within a reference cell of the reference's.
+    CHECK(std::abs(r.stage.specimen.extent.first - spec_ref.extent.first) <= ref.h);
+    CHECK(std::abs(r.stage.pad.extent.first - pad_ref.extent.first) <= ref.h);
+
+    const WearRecord& last = r.stage.records.back();
+    REQUIRE(last.w_pad.size() == std::size_t(cells));
+    const auto [first, end] = loaded(last.p);
+    int open = 0;
+    for (int i = first; i <= end; ++i) open += last.p[i] > 0.0 ? 0 : 1;
+    CHECK(open == 0);
+    const double p_mean = 18500.0 / (double(end - first + 1) * r.h);
+    double alternation = 0.0;
+    for (int i = first + kInteriorMargin; i <= end - kInteriorMargin; ++i)
+      alternation = std::max(alternation, std::abs(last.p[i] - 0.5 * (last.p[i - 1] + last.p[i + 1])) / p_mean);
+    CHECK(alternation < kAlternationTolerance);
+  }
+}
+
+TEST_CASE("body frames: the newest edge cells carry the every-cycle solution's pressure at the default tolerance") {
+  const int cells = 512;
+  const Run every = run(example(cells, WearStepper::cycle_by_cycle));
+  const Run step = run(example(cells, WearStepper::implicit));
+  const std::vector<double>& pe = every.stage.records.back().p;
+  const std::vector<double>& ps = step.stage.records.back().p;
+  const auto [first, last] = loaded(pe);
+  REQUIRE(loaded(ps) == std::make_pair(first, last));
+  const double p_max = *std::max_element(pe.begin(), pe.end());
+  for (int k = 0; k < kEdgeCells; ++k) {
+    CAPTURE(k);
+    CHECK(std::abs(ps[first + k] - pe[first + k]) < kEdgeAgreement * p_max);
+    CHECK(std::abs(ps[last - k] - pe[last - k]) < kEdgeAgreement * p_max);
+  }
+}

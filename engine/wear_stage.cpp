@@ -164,6 +164,31 @@ set grid
                                                   : "gross slip: no stick zone, no asymptote");
   s += "set ylabel 'pressure p (MPa)'\n";
   s += svg_and_png("wear_pressure", series("$7*1e-6", "asymptote"));
+  if (!last.w_pad.empty()) {  // gross slip, each body in its own frame: the two scars of the same records
+    std::string plot = "plot ";
+    for (std::size_t j = 0; j < shown.size(); ++j) {
+      const std::size_t k = shown[j];
+      const double t = shown.size() > 1 ? double(j) / double(shown.size() - 1) : 1.0;
+      for (int body = 0; body < 2; ++body)
+        plot += fmt::format("'profiles.csv' skip 1 every ::{}::{} using ($2*1e3):(${}*1e6) with lines lw 1.5 dt {} "
+                            "lc rgb '{}' title '{}, {}', ",
+                            k * cells, k * cells + cells - 1, body == 0 ? 5 : 6, body == 0 ? 1 : 2, ramp(t),
+                            body == 0 ? "pad" : "specimen", cycles_label(w.records[k].cycles));
+    }
+    // The x range: the specimen's scar, which spreads over the stroke, with a tenth of its width each side.
+    double lo = r, hi = l;
+    for (int i = 0; i < cells; ++i)
+      if (last.w_pad[std::size_t(i)] > 0.0 || last.w_specimen[std::size_t(i)] > 0.0)
+        lo = std::min(lo, n.grid.x(i)), hi = std::max(hi, n.grid.x(i));
+    const double margin = 0.1 * (hi - lo);
+    s += fmt::format("set xrange [{}:{}]\n", std::max(n.grid.x_min, lo - margin) * 1e3,
+                     std::min(n.grid.x_max, hi + margin) * 1e3);
+    s += fmt::format("set title \"{}: each body's scar in its own frame (pad solid, specimen dashed)\" noenhanced\n",
+                     scene.name);
+    s += "set ylabel 'wear depth (µm)'\nset yrange [0:*]\n";
+    s += svg_and_png("wear_bodies", plot.substr(0, plot.size() - 2) + "\n");
+    s += fmt::format("set xrange [{}:{}]\n", l * 1e3, r * 1e3);
+  }
 
   // Against cycles: log axis; the unworn record (cycles = 0) cannot be shown there, and a run stopped before its
   // first record after it has nothing to show.

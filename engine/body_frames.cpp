@@ -45,10 +45,16 @@ std::vector<double> BodyFrames::mid_stroke(std::span<const double> z) const {
   return w;
 }
 
-void BodyFrames::respond(std::span<const double> z, wear::CycleResponse& out) {
+double BodyFrames::respond(std::span<const double> z, wear::CycleResponse& out) {
   respond_(mid_stroke(z), out);
-  s_ = out.slip_if_touching();
-  positions_ = frame_positions(amplitude_(), model_.grid.h());
+  const double U = amplitude_();
+  lag(out, U);
+  return U;
+}
+
+void BodyFrames::lag(const wear::CycleResponse& r, double U) {
+  s_ = r.slip_if_touching();
+  positions_ = frame_positions(U, model_.grid.h());
 }
 
 // Pad cell i at position k sits over the specimen's point i + u_k (in cells): between cells j and j + 1, read with
@@ -198,22 +204,42 @@ bool BodyFrames::euler(std::span<const double> z, double dN, std::vector<std::ve
 controlled_step_result FramesWearStepper::try_step(std::reference_wrapper<BodyFrames> system, state_type& z,
                                                    time_type& N, time_type& dN) {
   BodyFrames& frames = system.get();
-  wear::CycleResponse r;
-  frames.respond(z, r);
-  ++stats_.responses;
-  if (p_start_.size() != frames.positions().shift.size()) {
-    p_start_.assign(frames.positions().shift.size(), r.p);
+  if (responded_ != z) {
+    response_.p = p_start_.empty() ? std::vector<double>{} : p_start_[p_start_.size() / 2];
+    amplitude_ = frames.respond(z, response_);
+    ++stats_.responses;
+    responded_ = z;
+  } else {
+    frames.lag(response_, amplitude_);
+  }
+  const std::size_t K = frames.positions().shift.size();
+  if (p_start_.size() != K) {
+    p_start_.assign(K, response_.p);
     frames.pressures(z, p_start_);
   }
 
-  std::vector<std::vector<double>> p_full = p_start_, p_half = p_start_;
+  // The half step first; the full step starts its passes from the half step's pressures extrapolated to ΔN.
+  std::vector<std::vector<double>> p_half = p_start_, p_full;
   state_type z_full, z_half, z_two;
-  bool solved = frames.euler(z, dN, p_full, z_full) && frames.euler(z, 0.5 * dN, p_half, z_half);
+  bool solved = frames.euler(z, 0.5 * dN, p_half, z_half);
   if (solved) {
+    p_full = p_half;
+    for (std::size_t k = 0; k < K; ++k)
+      for (std::size_t i = 0; i < p_full[k].size(); ++i)
+        p_full[k][i] = std::max(0.0, 2.0 * p_half[k][i] - p_start_[k][i]);
+    solved = frames.euler(z, dN, p_full, z_full);
+  }
+  if (solved) {
+    wear::CycleResponse r;
+    r.p = response_.p;
     frames.respond(z_half, r);
     ++stats_.responses;
     std::vector<std::vector<double>> p_mid = p_half;
     if (p_mid.size() != frames.positions().shift.size()) p_mid.assign(frames.positions().shift.size(), r.p);
+    else
+      for (std::size_t k = 0; k < K; ++k)
+        for (std::size_t i = 0; i < p_mid[k].size(); ++i)
+          p_mid[k][i] = std::max(0.0, 2.0 * p_half[k][i] - p_start_[k][i]);
     solved = frames.euler(z_half, 0.5 * dN, p_mid, z_two);
     if (solved) p_half = std::move(p_mid);
   }

@@ -80,8 +80,10 @@ class BodyFrames {
   double c_specimen() const { return c_spec_; }
   // The gap's wear at mid-stroke, w_pad + w_spec, of z = [w_pad; w_spec].
   std::vector<double> mid_stroke(std::span<const double> z) const;
-  // The cycle at mid-stroke on z (out), and the positions and slip the step lags from it.
-  void respond(std::span<const double> z, wear::CycleResponse& out);
+  // The cycle at mid-stroke on z (out), and the positions and slip the step lags from it; returns its sliding
+  // amplitude U (m). lag() sets them again from a response and its U.
+  double respond(std::span<const double> z, wear::CycleResponse& out);
+  void lag(const wear::CycleResponse& r, double U);
   // The pressures p_k on z at the positions of the last respond() (warm-started from p), and dz/dN from them.
   void pressures(std::span<const double> z, std::vector<std::vector<double>>& p);
   void rates(const std::vector<std::vector<double>>& p, std::vector<double>& dz) const;
@@ -142,6 +144,10 @@ class FramesWearStepper {
   double tolerance_;
   FramesStepperStats stats_;
   std::vector<std::vector<double>> p_start_;  // the pressures at the last accepted state (warm starts)
+  // The response at the state of the last try and its U: a rejected step retried from the same state reuses them.
+  state_type responded_;
+  wear::CycleResponse response_;
+  double amplitude_ = 0.0;
 };
 
 // One cycle at a time, every position: the reference of the step above (effects.wear.stepper "cycle_by_cycle").

@@ -930,8 +930,9 @@ SolveSummary IncrementalSlipSolver::Run::coupled_increment(double P, double f, c
   const double dQ = inc.Q - inc.Q_prev, d_eps = inc.bulk_strain - inc.bulk_strain_prev;
   std::vector<double> q_predicted;  // the first sweep's normal solve takes it instead of the start's q
   const double same = 1e-12;       // relative: the same P, the same strain per unit Q (they are sums of rounded terms)
+  const double strain_scale = std::abs(d_eps * dQ_last_) + std::abs(d_eps_last_ * dQ);
   if (options_.predict_increments && dQ_last_ != 0.0 && std::abs(P - P_last_) <= same * P && dQ / dQ_last_ > 0.0 &&
-      std::abs(d_eps * dQ_last_ - d_eps_last_ * dQ) <= same * (std::abs(d_eps * dQ_last_) + std::abs(d_eps_last_ * dQ))) {
+      std::abs(d_eps * dQ_last_ - d_eps_last_ * dQ) <= same * strain_scale) {
     const double r = dQ / dQ_last_;
     q_predicted = q_prev;
     for (int i = 0; i < n_; ++i) {

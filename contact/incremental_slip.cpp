@@ -29,6 +29,8 @@ std::string IncrementalSlipOptions::validate() const {
   if (max_iterations < 1) return fmt::format("max_iterations = {} must be at least 1", max_iterations);
   if (!(coupling_tolerance > 0.0 && coupling_tolerance <= 1e-2))
     return fmt::format("coupling_tolerance = {} is outside (0, 1e-2]", coupling_tolerance);
+  if (settling_increments < 0 || settling_increments % 4 != 0)
+    return fmt::format("settling_increments = {} must be 0 or a positive multiple of 4", settling_increments);
   if (max_coupling_sweeps < 1)
     return fmt::format("max_coupling_sweeps = {} must be at least 1", max_coupling_sweeps);
   if (auto msg = normal.validate(); !msg.empty()) return "normal." + msg;
@@ -509,6 +511,9 @@ class IncrementalSlipSolver::Run {
   const NormalSolver coupled_normal_;  // the normal solves of the coupled increments
   const double A_beta_;
   ContactState normal_state_;   // the last coupled normal solve: the next one's warm start
+  // The last coupled increment's changes of q and p (Pa) and its load steps: the next one's predicted start.
+  std::vector<double> dq_last_, dp_last_;
+  double dQ_last_ = 0.0, P_last_ = 0.0, d_eps_last_ = 0.0;
 
  private:
   // A sweep's normal half: p for the gap g0 − A β S q under the load P, warm-started from the last p.
@@ -579,6 +584,7 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   const bool displacement_;
   const double X_;              // the amplitude of x: Q (N/m) or δ (m)
   const int m_;
+  const int m_settle_;          // increments per cycle before the last (settling_increments)
   std::vector<double> p_;       // the pressure (Pa); it moves over the cycle only when β ≠ 0
   std::vector<double> lo_, hi_;
   double capacity_ = 0.0;       // f P on the grid, summed as iterate() sums it (N/m)
@@ -732,6 +738,7 @@ IncrementalSlipSolver::AmplitudeRun::AmplitudeRun(const IncrementalSlipSolver& s
       displacement_(load.delta > 0.0),
       X_(displacement_ ? load.delta : load.Q_max),
       m_(options_.increments_per_cycle),
+      m_settle_(options_.settling_increments > 0 ? options_.settling_increments : m_),
       p_(contact.p),
       lo_(n_),
       hi_(n_),
@@ -743,8 +750,9 @@ IncrementalSlipSolver::AmplitudeRun::AmplitudeRun(const IncrementalSlipSolver& s
 
 void IncrementalSlipSolver::AmplitudeRun::first_loading() {
   if (datum_) first_loading_.push_back({P_, 0.0, 0.0});
-  for (int k = 1; k <= m_ / 4; ++k) {
-    step(X_ * (4.0 * k / m_), 0, k);
+  const int m = options_.cycles > 1 ? m_settle_ : m_;
+  for (int k = 1; k <= m / 4; ++k) {
+    step(X_ * (4.0 * k / m), 0, k);
     if (datum_) first_loading_.push_back(loop_point());
   }
 }
@@ -755,18 +763,19 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
   double sliding = 0.0;          // rigid sliding beyond the stick limit over the cycle (m)
   std::vector<double> hi_unloaded = hi_;
   bool sliding_unloaded = false;  // the bodies slide rigidly through the unloaded phase (δ = 0): no cell sticks
-  for (int j = 1; j <= m_; ++j) {
+  const int m = c < options_.cycles ? m_settle_ : m_;
+  for (int j = 1; j <= m; ++j) {
     // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
-    const double xt = 2 * j <= m_ ? X_ * (1.0 - 4.0 * j / m_) : X_ * (-1.0 + 4.0 * (j - m_ / 2) / m_);
+    const double xt = 2 * j <= m ? X_ * (1.0 - 4.0 * j / m) : X_ * (-1.0 + 4.0 * (j - m / 2) / m);
     r.solves.push_back(step(xt, c, j));
     sliding += std::abs(extra_);
     end_increment(r, Q_prev_);
-    if (4 * j == m_) r.q_unloaded = state_.q, hi_unloaded = hi_, sliding_unloaded = extra_ != 0.0;
-    if (2 * j == m_) {
+    if (4 * j == m) r.q_unloaded = state_.q, hi_unloaded = hi_, sliding_unloaded = extra_ != 0.0;
+    if (2 * j == m) {
       r.q_bottom = state_.q;
       if (coupled_) result_.p_bottom = p_;
     }
-    if (4 * j == 3 * m_) r.q_reloaded = state_.q;
+    if (4 * j == 3 * m) r.q_reloaded = state_.q;
   }
   if (coupled_) result_.p_top = p_;
   r.q_top = state_.q;
@@ -908,13 +917,30 @@ std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::false_posit
 }
 
 // A sweep k: p_k from q_{k−1}, then q_k from p_k; the increment ends when a sweep changes neither traction by more
-// than coupling_tolerance · max p_k.
+// than coupling_tolerance · max p_k. q_0 and p_0 are the increment's start; with predict_increments, where the last
+// increment had the same P and the same strain per unit Q and loaded in the same direction, the first normal solve
+// takes instead the start plus the last increment's change scaled to this load step, q_0 + r Δq_last (r = ΔQ/ΔQ_last),
+// and p_0 + r Δp_last is its warm start and the pressure its change is measured from (header).
 SolveSummary IncrementalSlipSolver::Run::coupled_increment(double P, double f, const SlipIncrement& inc,
                                                            std::vector<double>& p, std::vector<double>& lo,
                                                            std::vector<double>& hi, int cycle, int k) {
-  const std::vector<double> p_prev = p, u_prev = state_.u;
+  const std::vector<double> p_prev = p, u_prev = state_.u, q_prev = state_.q;
   std::vector<double> p_last = p, q_last = state_.q;
   IncrementState trial = state_;
+  const double dQ = inc.Q - inc.Q_prev, d_eps = inc.bulk_strain - inc.bulk_strain_prev;
+  std::vector<double> q_predicted;  // the first sweep's normal solve takes it instead of the start's q
+  const double same = 1e-12;       // relative: the same P, the same strain per unit Q (they are sums of rounded terms)
+  const double strain_scale = std::abs(d_eps * dQ_last_) + std::abs(d_eps_last_ * dQ);
+  if (options_.predict_increments && dQ_last_ != 0.0 && std::abs(P - P_last_) <= same * P && dQ / dQ_last_ > 0.0 &&
+      std::abs(d_eps * dQ_last_ - d_eps_last_ * dQ) <= same * strain_scale) {
+    const double r = dQ / dQ_last_;
+    q_predicted = q_prev;
+    for (int i = 0; i < n_; ++i) {
+      q_predicted[i] += r * dq_last_[i];
+      p_last[i] = std::max(0.0, p_last[i] + r * dp_last_[i]);
+    }
+    normal_state_.p = p_last;  // the first normal solve's warm start
+  }
   SolveSummary total;
   double change = std::numeric_limits<double>::infinity();
   int sweeps = 0;
@@ -926,7 +952,7 @@ SolveSummary IncrementalSlipSolver::Run::coupled_increment(double P, double f, c
           "sweeps (coupling tolerance {:.3g})",
           where(cycle, k), inc.Q_prev, inc.Q, coupling_->beta, change / *std::max_element(p.begin(), p.end()),
           options_.max_coupling_sweeps, options_.coupling_tolerance));
-    coupled_pressure(trial.q, P, inc, p, cycle, k);
+    coupled_pressure(sweeps == 1 && !q_predicted.empty() ? q_predicted : trial.q, P, inc, p, cycle, k);
     const SolveSummary ts = coupled_traction(f, inc, p, p_prev, u_prev, lo, hi, trial);
     total.iterations += ts.iterations;
     total.seconds += ts.seconds;
@@ -940,6 +966,10 @@ SolveSummary IncrementalSlipSolver::Run::coupled_increment(double P, double f, c
     q_last = trial.q;
   }
   state_ = std::move(trial);
+  dq_last_.resize(n_);
+  dp_last_.resize(n_);
+  for (int i = 0; i < n_; ++i) dq_last_[i] = state_.q[i] - q_prev[i], dp_last_[i] = p[i] - p_prev[i];
+  dQ_last_ = dQ, P_last_ = P, d_eps_last_ = d_eps;
   result_.n_coupling_sweeps += sweeps;
   result_.max_coupling_sweeps = std::max(result_.max_coupling_sweeps, sweeps);
   return total;

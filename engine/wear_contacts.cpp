@@ -149,10 +149,15 @@ constexpr double kEnergySlipCap = 2.0;
 // The lagged coupling may add this share of what one accepted step may err by (header).
 constexpr double kLagSafety = 0.5;
 
-IncrementalSlipOptions incremental_options(const Scene& scene, double beta) {
+// The increments per cycle of the settling march (the first loading takes one, the first cycle four) of a coupled
+// response under force control and a constant P (header).
+constexpr int kSettlingIncrements = 4;
+
+IncrementalSlipOptions incremental_options(const Scene& scene, double beta, const CyclicLoad& load) {
   IncrementalSlipOptions o;
   o.increments_per_cycle = scene.tangential->increments;
   if (beta != 0.0) o.cycles = 2;  // as the cycle stage: the first cycle after the first loading is not yet steady
+  if (beta != 0.0 && load.history.empty() && !(load.delta > 0.0)) o.settling_increments = kSettlingIncrements;
   o.normal.proportioning = kWearProportioning;  // the coupled normal solves are on the worn profile
   return o;
 }
@@ -167,7 +172,7 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
                                                        const CycleStage& cycle, const CyclicLoad& load,
                                                        Coupling coupling)
     : WearContact(scene, model),
-      slip_(*model.kernel, incremental_options(scene, cycle.plan.beta)),
+      slip_(*model.kernel, incremental_options(scene, cycle.plan.beta, load)),
       datum_(model.grid, model.pair, cycle.reference_x, cycle.reference_depth),
       load_(load),
       beta_(cycle.plan.beta) {

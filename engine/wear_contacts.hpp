@@ -157,10 +157,15 @@ class AnalogyContactResponse : public WearContact {
 //    less than the energy's, falling to zero with p_ref. Such cells wear as the uncoupled pressure under P says;
 //    the limit the run tends to is then that of the pressure under P (PERFORMANCE.md, "Dissimilar bodies").
 //
-// The lagged coupling (β ≠ 0 under force control and a constant P, Coupling::lagged, the default). A coupled cycle
-// marches the first loading and two cycles of block Gauss–Seidel increments (90 increments of about six sweeps at
-// 40 increments per cycle); the analogy's uncoupled cycle on the same worn profile (AnalogyContactResponse: a
-// normal and a corrective solve) costs a few hundredths of it. So a response may be
+// The coupled cycle (β ≠ 0 under force control and a constant P) settles in kSettlingIncrements = 4 per cycle: the
+// first loading in one increment and the first cycle in four, then the scene's steady cycle (45 increments of about
+// five block Gauss–Seidel sweeps at 40 per cycle, against 90 marching all at 40): only the steady cycle is reported,
+// and the state at its start hardly remembers the march to it (contact/incremental_slip.hpp,
+// settling_increments, and tests/verification/test_coupled_increments.cpp: 1e-8 of the energy, 1e-6 p0).
+//
+// The lagged coupling (β ≠ 0 under force control and a constant P, Coupling::lagged, the default). The analogy's
+// uncoupled cycle on the same worn profile (AnalogyContactResponse: a normal and a corrective solve) costs a few
+// hundredths of a coupled cycle. So a response may be
 //     s(w) = max(0, s_u(w) + Δs(w_r))   on the contact of p(w) (zero off it),   Δs(w_r) = s_c(w_r) − s_u(w_r),
 // s_u the uncoupled slip, s_c the coupled one (the energy's equivalent above) and w_r the profile of the last
 // coupled response (the refresh); the shear at the top of the cycle is corrected alike, and the stick zones are the

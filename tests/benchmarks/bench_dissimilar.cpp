@@ -2,8 +2,8 @@
 // similar one). The case: the Hertz wear scene of PHYSICS.md (R = 10 mm, P = 100 kN/m, f = 0.5, Q/fP = 0.5, Archard
 // k = 1e-12 1/Pa, 10^6 cycles, 8 records, 1024 cells, force control), once with two steel bodies (β = 0: the
 // Ciavarella–Jäger analogy) and once with a steel pad on an aluminium specimen (E = 71 GPa, ν = 0.33; β ≈ −0.11:
-// the coupled incremental route, which solves normal and tangential problems together, with its lagged coupling:
-// engine/wear_contacts.hpp). Each iteration runs the whole
+// the coupled incremental route, which solves normal and tangential problems together, with its lagged coupling and
+// its settling march: engine/wear_contacts.hpp). Each iteration runs the whole
 // scene (normal, cycle, wear) as the command line does, without writing files. docs/PERFORMANCE.md ("Dissimilar
 // bodies") has the command and the measured ratio.
 #include <benchmark/benchmark.h>

@@ -87,20 +87,24 @@ void check_gross_slip_window(const Scene& scene, const Model& model, const Cycle
   if (cycle.result.regime != Regime::gross_slip || !scene.blocks.empty() || !(e.area_rate > 0.0)) return;
   const Grid& grid = model.grid;
   const double cycles = scene.wear->cycles;
+  // With each body in its own frame the specimen's scar reaches the sliding amplitude U beyond the contact.
+  const double U = bodies_in_own_frames(scene, model, cycle) ? cycle.result.sliding_amplitude : 0.0;
   const Flat end = flat_holding(model.profile, e.area_rate * cycles, grid.h());
   const Flat margin = flat_holding(model.profile, (1.0 + kFlatMargin) * e.area_rate * cycles, grid.h());
-  if (margin.left > grid.x_min && margin.right < grid.x_max) return;  // the flat with the margin fits: so does `end`
-  // The cycles at which the flat reaches the nearer end of the window.
-  const double d_window = std::min(model.profile.gap(grid.x_min), model.profile.gap(grid.x_max));
+  if (margin.left - U > grid.x_min && margin.right + U < grid.x_max) return;  // with the margin it fits: so does `end`
+  // The cycles at which the flat (and U) reaches the nearer end of the window.
+  const double d_window = std::min(model.profile.gap(grid.x_min + U), model.profile.gap(grid.x_max - U));
   const double reached = flat_at(model.profile, d_window, grid.h()).area / e.area_rate;
   const double x0 = model.profile.lowest_point();
-  const double half = 1.2 * std::max(x0 - end.left, end.right - x0);
+  const double half = 1.2 * (std::max(x0 - end.left, end.right - x0) + U);
+  const std::string scar =
+      U > 0.0 ? fmt::format(" (with the specimen's scar, which spreads {:.3g} m further each side)", U) : "";
   const std::string what = fmt::format(
       "in gross slip the contact wears flat and keeps widening: at the first cycle's rate (c ∫ p s dx = {:.3g} m² a "
-      "cycle) it reaches the window's end after about {:.3g} of the {:.4g} cycles (the original profile cut flat to "
+      "cycle) it{} reaches the window's end after about {:.3g} of the {:.4g} cycles (the original profile cut flat to "
       "hold the worn area; docs/SCENES.md, \"Wear\"). Widen grid.window to about [{:.3g}, {:.3g}] m (that flat after "
       "the last cycle, and 20 %), or wear fewer cycles",
-      e.area_rate, reached, cycles, x0 - half, x0 + half);
+      e.area_rate, scar, reached, cycles, x0 - half, x0 + half);
   if (reached < cycles)
     problems.push_back("effects.wear.cycles: " + what);
   else if (preflight)

@@ -176,4 +176,14 @@ TEST_CASE("a gross-slip wear run whose contact would reach the window's end is r
   CHECK(warning_codes(scene("2.45e5", "[-0.6e-3, 0.6e-3]")).count("window_reached") == 1);
   // Partial slip never widens: no estimate.
   CHECK(warning_codes(scene("2e6", "[-0.6e-3, 0.6e-3]", "1e-6")).count("window_reached") == 0);
+  // Both bodies wearing, each in its own frame: the specimen's scar spreads the sliding amplitude (24 µm) further,
+  // so the window is reached sooner (2.35e5 cycles), and 2.45e5 cycles, a warning above, are refused.
+  std::string both = scene("2.45e5", "[-0.6e-3, 0.6e-3]");
+  both.replace(both.find("\"pad_fraction\": 1.0"), 19, "\"pad_fraction\": 0.5");
+  write_file(scratch.path / "s.json", both);
+  const Outcome frames = run_program(scratch.path, {"validate", "s.json"});
+  CAPTURE(frames.all());
+  CHECK(frames.status == 2);
+  CHECK(frames.err.find("(with the specimen's scar, which spreads 2.43e-05 m further each side) reaches the window's "
+                        "end after about 2.35e+05") != std::string::npos);
 }

@@ -1,4 +1,4 @@
-// Each body's wear in its own frame, in gross slip (docs/METHODS.md, "Each body's scar in its own frame").
+// Each body's wear in its own frame, in gross slip (docs/METHODS.md, "Each body in its own frame").
 //
 // In gross slip the pad slides over the specimen by ±U each cycle, so a point of the specimen meets the whole
 // stroke of pad points while a point of the pad meets the whole stroke of specimen points. The state is therefore
@@ -10,28 +10,35 @@
 // travelled s(x) per cycle (4U plus the elastic part, the cycle's response at mid-stroke) Archard's law gives
 //     dw_pad/dN (x) = c_pad s(x) ⟨p_u(x)⟩,      dw_spec/dN (X) = c_spec ⟨(p_u s)(X − u)⟩,
 // ⟨·⟩ the mean over u ∈ [−U, U]. The mean is taken by the trapezoid rule on positions u_k = k U / M, k = −M … M,
-// M = min(kFrameIntervals, max(1, round(U / Δx))), about a cell apart while the stroke spans few cells. The
-// specimen's profile is read between its cells by linear interpolation, and its wear deposited by the transpose of
-// that reading, so that Σ h dw_spec = Σ h c_spec ⟨p s⟩ exactly. Measured on the gross-slip example, every cycle worn
-// at 512 cells against all 21 whole-cell positions (docs/PERFORMANCE.md, "Each body's frame in gross slip"): 9
-// positions give each body's depth to 2e-4 and 5e-4 and the scars' ends to the cell, 5 positions to 1.2e-3.
+// M = min(kFrameIntervals, max(1, round(U / Δx))), about a cell apart while the stroke spans few cells. Each position
+// stands for its share of the stroke, halfway to its neighbours: the specimen is read as its mean over the points the
+// pad passes in that share, and each position's wear deposited evenly over them, the transpose
+// (BodyFrames::share_cells), so that Σ h dw_spec = Σ h c_spec ⟨p s⟩ exactly and the composite of reading and deposit is
+// positive semidefinite. Measured on the gross-slip example (docs/PERFORMANCE.md, "Each body's frame in gross slip"):
+// against all 21 whole-cell positions at 512 cells, every cycle worn, 9 positions gave each body's depth to 2e-4 and
+// 5e-4 and 17 positions to 1e-4; but the pressure, at 9 positions, rippled by about 5 % at the positions' spacing
+// (each position's pressure has its edge where that position's share of the specimen's scar ends, and the pad sums
+// them), much less at 17, hence 17 (twice the time).
 //
 // The step (backward Euler in the pressures, with the slip s lagged at the step's start as the shared profile's
 // contact-implicit step lags it, wear/implicit_stepper.hpp): the end-of-step pressures p_k solve
 //     p_k = normal solution for the gap  g0 + w_pad + S_k w_spec + ΔN [R_pad(p) + S_k R_spec(p)],
 // R_pad, R_spec the rates above and S_k the reading of the specimen at position k. Every position's gap carries
-// every position's wear, so the system couples them. It is approached by the passes
-//     p_k^{j+1} = normal solution for  g0 + w_pad + S_k w_spec + ΔN [R_pad(p^j) + S_k R_spec(p^j) − D p_k^j] + D p_k^{j+1},
-// from p^0 the pressures at the step's start, with D = (c_pad + c_spec) s ΔN the normal solver's diagonal shift:
-// the wear position k's own pressure would deposit were all positions alike is implicit within each solve (so the
-// contact's own stiffness never limits the step, as in the shared profile's step), and the difference between
-// positions is carried from the last pass. kFramePasses passes are made (fewer when they stop changing the pressure
-// by kFramePassTolerance of its largest value), and the step's error estimate judges the result.
-// Measured on examples/gross_slip_displacement_wear.json (docs/PERFORMANCE.md, "Each body's frame in gross slip"):
-// one pass is stable but its steps shrink with the grid (a cell-wide alternation of w_pad against w_spec is invisible
-// to the positions shifted by an even number of cells and doubled for the odd ones, and one pass leaves that coupling
-// lagged); the fixed point itself converges slowly at large jumps (thirty passes did not reach 1e-7 beyond about 30
-// cycles at 256 cells); 2, 4 and 8 passes took 764, 527 and 367 steps at 1024 cells in about the same time.
+// every position's wear, so the system couples them. It is solved by the passes
+//     p_k^{j+1} = normal solution for  g0 + w_pad + S_k w_spec + ΔN [R_pad(x^j) + S_k R_spec(x^j) − D x_k^j] + D p_k^{j+1},
+// D = (c_pad + c_spec) s ΔN the normal solver's diagonal shift (the wear position k's own pressure would deposit were
+// all positions alike, implicit within each solve, so that the contact's own stiffness never limits the step), from
+// x^0 the pressures at the step's start (the full step: the half step's, extrapolated), with Anderson's mixing of the
+// passes (x^{j+1} = p^{j+1} − ΔG γ, γ the least-squares fit of the residual p^{j+1} − x^j by the last kFrameMemory
+// differences of residuals ΔF, ΔG those of the passes' results; Eigen's column-pivoting QR), until a pass changes the
+// pressure by less than kFramePassTolerance of its largest value; a step whose passes do not get there in
+// kFramePasses is retried with a quarter of the jump. Measured on examples/gross_slip_displacement_wear.json: one pass
+// (each position's own wear implicit, the rest lagged) is stable but its steps shrink with the grid (400 / 664 / 1097
+// at 256 / 512 / 1024 cells): a cell-wide alternation of w_pad against w_spec is invisible to positions an even number
+// of cells apart and doubled for the odd ones, and the lag leaves that coupling explicit. Four unmixed passes left
+// every other cell of the newest 20 at each contact edge open at 1024 cells, with the profiles' error (1e-9 m) under
+// the tolerance; unmixed passes do not converge at large jumps (thirty stayed above 1e-7 beyond about 30 cycles at
+// 256 cells); mixed, about eight reach 1e-3.
 //
 // Error control as the shared profile's (wear/implicit_stepper.hpp): Richardson extrapolation over one step of ΔN
 // and two of ΔN/2 (s refreshed at the half step), err = max_i |two − one| / (τ max_i z) over both profiles,
@@ -40,6 +47,7 @@
 
 #include <functional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <boost/numeric/odeint/stepper/controlled_step_result.hpp>
@@ -52,7 +60,7 @@
 
 namespace fretwear {
 
-inline constexpr int kFrameIntervals = 4;                 // M's cap: 9 positions over the stroke
+inline constexpr int kFrameIntervals = 8;                 // M's cap: 17 positions over the stroke
 inline constexpr int kFramePasses = 40;                   // passes of the step's coupling between positions
 inline constexpr double kFramePassTolerance = 1e-3;       // converged when one changes p by less (relative to max p)
 inline constexpr int kFrameMemory = 6;                    // Anderson's mixing: the differences it fits
@@ -61,6 +69,9 @@ inline constexpr int kFrameMemory = 6;                    // Anderson's mixing: 
 struct FramePositions {
   std::vector<double> shift;   // u_k / Δx
   std::vector<double> weight;  // ν_k
+  // The share of the stroke each stands for, [a_k, b_k] / Δx: halfway to its neighbours, [−U, U] in all (ν_k is its
+  // length over 2U).
+  std::vector<std::pair<double, double>> share;
 };
 FramePositions frame_positions(double U, double h);
 
@@ -100,6 +111,10 @@ class BodyFrames {
  private:
   // The gap of position k on z, plus extra (empty: none).
   void gap_at(std::span<const double> z, std::size_t k, std::span<const double> extra, std::vector<double>& g) const;
+  // The specimen's cells j that pad cell i passes in position k's share of the stroke, with the share of the
+  // passage over each (summing to 1): visit(j, weight).
+  template <class Visit>
+  void share_cells(std::size_t k, int i, Visit visit) const;
   // S_k v: the specimen's v read at the pad's cells, position k; and its transpose, added to out.
   void read(std::span<const double> v, std::size_t k, std::vector<double>& out) const;
   void deposit(std::span<const double> v, std::size_t k, std::vector<double>& out) const;

@@ -123,6 +123,7 @@ void BodyFrames::pressures(std::span<const double> z, std::vector<std::vector<do
     state.p = p[k];
     const SolveSummary s = solver_.solve(g, P_, state);
     ++solves_;
+    cg_iterations_ += s.iterations;
     if (!s.converged())
       throw ConvergenceError(fmt::format("wear: the normal solve at a position of the stroke stopped ({}) with "
                                          "residual {:.3g}",
@@ -176,6 +177,7 @@ bool BodyFrames::euler(std::span<const double> z, double dN, std::vector<std::ve
       state.p = p[k];
       const SolveSummary s = solver_.solve(g, P_, state, d);
       ++solves_;
+      cg_iterations_ += s.iterations;
       if (!s.converged()) {
         last_unconverged = s;
         return false;

@@ -104,8 +104,11 @@ class BodyFrames {
 
   const FramePositions& positions() const { return positions_; }
   long solves() const { return solves_; }
+  long cg_iterations() const { return cg_iterations_; }  // over the solves
   long iterations() const { return iterations_; }  // passes over the positions, over all steps
-  void count(long solves, long iterations) { solves_ = solves, iterations_ = iterations; }
+  void count(long solves, long iterations, long cg_iterations) {
+    solves_ = solves, iterations_ = iterations, cg_iterations_ = cg_iterations;
+  }
   SolveSummary last_unconverged;
 
  private:
@@ -127,7 +130,7 @@ class BodyFrames {
   NormalSolver solver_;
   FramePositions positions_;
   std::vector<double> s_;  // the slip lagged: the last response's slip_if_touching
-  long solves_ = 0, iterations_ = 0;
+  long solves_ = 0, iterations_ = 0, cg_iterations_ = 0;
 };
 
 struct FramesStepperStats {

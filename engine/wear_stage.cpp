@@ -726,11 +726,13 @@ void WearRun::drive_frames(double rate_max) {
         [&] {
           json j = stepper.save();
           j["solves"] = frames.solves(), j["iterations"] = frames.iterations();
+          j["cg_iterations"] = frames.cg_iterations();
           return j;
         },
         [&](const json& j) {
           stepper.restore(j);
-          frames.count(j.at("solves").get<long>(), j.at("iterations").get<long>());
+          frames.count(j.at("solves").get<long>(), j.at("iterations").get<long>(),
+                       j.at("cg_iterations").get<long>());
         });
     stage_.steps = stepper.stats().accepted;
     stage_.rejected_steps = stepper.stats().rejected;
@@ -738,6 +740,7 @@ void WearRun::drive_frames(double rate_max) {
     stage_.responses = stepper.stats().responses;
   }
   stage_.implicit_solves = int(frames.solves());
+  stage_.mean_iterations_implicit = double(frames.cg_iterations()) / double(std::max(1L, frames.solves()));
   stage_.frame_iterations = frames.iterations();
   stage_.frame_positions = int(frames.positions().shift.size());
 }
@@ -970,8 +973,9 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   if (first.rate_max == 0.0) return stage;  // nothing slips: nothing wears
   scars(model, effect, stage);
   stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
-  stage.mean_iterations_implicit =
-      double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
+  if (stage.frame_positions == 0)  // with frames, drive_frames() counted its own solves
+    stage.mean_iterations_implicit =
+        double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
   settle(scene, model, cycle, stage);
   return stage;
 }

@@ -88,7 +88,7 @@ void BodyFrames::read(std::span<const double> v, std::size_t k, std::vector<doub
   }
 }
 
-void BodyFrames::deposit(std::span<const double> v, std::size_t k, std::vector<double>& out) const {
+void BodyFrames::deposit(std::span<const double> v, std::size_t k, std::span<double> out) const {
   for (int i = 0; i < n_; ++i) {
     const double value = v[std::size_t(i)];
     if (value == 0.0) continue;
@@ -134,18 +134,18 @@ void BodyFrames::pressures(std::span<const double> z, std::vector<std::vector<do
 
 void BodyFrames::rates(const std::vector<std::vector<double>>& p, std::vector<double>& dz) const {
   dz.assign(std::size_t(2 * n_), 0.0);
-  std::vector<double> ps(static_cast<std::size_t>(n_)), spec(static_cast<std::size_t>(n_), 0.0);
+  const std::span<double> spec = std::span<double>(dz).subspan(std::size_t(n_));
+  deposit_.resize(std::size_t(n_));
   for (std::size_t k = 0; k < p.size(); ++k) {
     const double nu = positions_.weight[k];
     for (int i = 0; i < n_; ++i) {
       const std::size_t a = std::size_t(i);
       const double pi = std::max(0.0, p[k][a]);
       dz[a] += c_pad_ * nu * pi * s_[a];
-      ps[a] = c_spec_ * nu * pi * s_[a];
+      deposit_[a] = c_spec_ * nu * pi * s_[a];
     }
-    deposit(ps, k, spec);
+    deposit(deposit_, k, spec);
   }
-  for (int i = 0; i < n_; ++i) dz[std::size_t(n_ + i)] = spec[std::size_t(i)];
 }
 
 bool BodyFrames::euler(std::span<const double> z, double dN, std::vector<std::vector<double>>& p,

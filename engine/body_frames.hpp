@@ -86,9 +86,6 @@ class BodyFrames {
   using Amplitude = std::function<double()>;
   BodyFrames(const Model& model, double P, double c_pad, double c_specimen, Respond respond, Amplitude amplitude);
 
-  int cells() const { return n_; }
-  double c_pad() const { return c_pad_; }
-  double c_specimen() const { return c_spec_; }
   // The gap's wear at mid-stroke, w_pad + w_spec, of z = [w_pad; w_spec].
   std::vector<double> mid_stroke(std::span<const double> z) const;
   // The cycle at mid-stroke on z (out), and the positions and slip the step lags from it; returns its sliding
@@ -120,7 +117,7 @@ class BodyFrames {
   void share_cells(std::size_t k, int i, Visit visit) const;
   // S_k v: the specimen's v read at the pad's cells, position k; and its transpose, added to out.
   void read(std::span<const double> v, std::size_t k, std::vector<double>& out) const;
-  void deposit(std::span<const double> v, std::size_t k, std::vector<double>& out) const;
+  void deposit(std::span<const double> v, std::size_t k, std::span<double> out) const;
 
   const Model& model_;
   int n_;
@@ -130,6 +127,7 @@ class BodyFrames {
   NormalSolver solver_;
   FramePositions positions_;
   std::vector<double> s_;  // the slip lagged: the last response's slip_if_touching
+  mutable std::vector<double> deposit_;  // rates()' scratch: one position's specimen wear before its deposit
   long solves_ = 0, iterations_ = 0, cg_iterations_ = 0;
 };
 

@@ -1,4 +1,5 @@
-// Each body's wear in its own frame in gross slip (engine/body_frames.hpp), on examples/gross_slip_displacement_wear.json
+// Each body's wear in its own frame in gross slip (engine/body_frames.hpp), on
+// examples/gross_slip_displacement_wear.json
 // shortened to 5000 cycles: a 6 mm cylinder on a flat, P = 18.5 kN/m, f = 0.9, δ = ±25 µm (the bodies slide
 // U = 24.3 µm each way), Archard k = 5e-14 1/Pa shared equally. The pad's points stay under the contact; the
 // specimen's meet the whole stroke, so its scar is wider by up to 2U and shallower, and the pad's deeper.
@@ -30,9 +31,9 @@ constexpr double kAgreement = 5e-3;
 // alternate cells. The discrete positions leave a ripple of their own, at the positions' spacing, in the every-cycle
 // solution too (9 positions, 5000 cycles: 0.021 at 512 cells, 0.015 at 1024, the step the same to 1e-3; 17
 // positions, the example's 18 000 cycles: 0.014 / 0.016 / 0.025 / 0.026 at 512 to 4096 cells); a stepper that
-// lagged the coupling between positions opened every other cell. And the newest edge cells: each of the first kEdgeCells loaded
-// cells within kEdgeAgreement of the every-cycle solution's on the same grid (a step that left the coupling between
-// positions lagged opened every other one of them at 1024 cells).
+// lagged the coupling between positions opened every other cell. And the newest edge cells: each of the first
+// kEdgeCells loaded cells within kEdgeAgreement of the every-cycle solution's on the same grid (a step that left the
+// coupling between positions lagged opened every other one of them at 1024 cells).
 constexpr double kAlternationTolerance = 0.05;
 constexpr int kInteriorMargin = 16;  // the alternation is measured this many cells inside the contact's ends
 constexpr int kEdgeCells = 8;
@@ -151,7 +152,8 @@ TEST_CASE("body frames: in gross slip the specimen's scar spreads over the strok
   const WearStage::Scar& spec_ref = ref.stage.specimen;
   // The frames matter: the specimen's scar is wider by more than one sliding amplitude and by at most two (plus a cell
   // each side for the threshold), and shallower; with one shared profile both would be the same.
-  const double widening = (spec_ref.extent.second - spec_ref.extent.first) - (pad_ref.extent.second - pad_ref.extent.first);
+  const double widening =
+      (spec_ref.extent.second - spec_ref.extent.first) - (pad_ref.extent.second - pad_ref.extent.first);
   CHECK(widening > ref.U);
   CHECK(widening < 2.0 * ref.U + 2.0 * ref.h);
   CHECK(spec_ref.max_depth < 0.9 * pad_ref.max_depth);

@@ -164,6 +164,15 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
                                v(w["stick_zone_initial"][0]), v(w["stick_zone_initial"][1]),
                                v(w["stick_zone_final"][0]), v(w["stick_zone_final"][1]));
     std::cout << "\n";
+    // In its own frame each body's scar has its own depth and extent (gross slip): the one line above cannot say both.
+    if (w.contains("bodies") && w["bodies"]["frames"] == "own") {
+      const auto& b = w["bodies"];
+      std::cout << fmt::format("  each body in its own frame ({} positions over the stroke): pad {:.4e} m deep over "
+                               "[{:.6e}, {:.6e}] m, specimen {:.4e} m deep over [{:.6e}, {:.6e}] m\n",
+                               b["positions"].get<int>(), v(b["pad"]["max_depth"]), v(b["pad"]["extent"][0]),
+                               v(b["pad"]["extent"][1]), v(b["specimen"]["max_depth"]), v(b["specimen"]["extent"][0]),
+                               v(b["specimen"]["extent"][1]));
+    }
     if (verbose) {
       const auto& as = w["asymptote"];
       if (as.is_object())

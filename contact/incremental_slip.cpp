@@ -18,6 +18,7 @@ namespace fretwear {
 
 namespace {
 constexpr int kMaxEvaluations = 200;  // force-control solves per displacement-controlled increment
+constexpr double kMirrorTolerance = 1e-6;  // the odd part of a gap taken as even, relative to its largest value
 }  // namespace
 
 std::string IncrementalSlipOptions::validate() const {
@@ -579,6 +580,12 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   // Gross slip where the bodies slid rigidly beyond the stick limit, reverse slip where some cell is held at −f p at
   // the top of the cycle.
   void classify(CycleResult& r, double sliding) const;
+  // Whether the last cycle may take its reloading half as the mirror image of its unloading half (the header).
+  bool mirrors() const;
+  // After the unloading half of cycle r from the state top and the pressure p_top: the reloading half as its mirror
+  // image, back at that top.
+  void mirror_reloading(CycleResult& r, std::size_t first_loop_point, const IncrementState& top,
+                        const std::vector<double>& p_top);
 
   const double f_, P_, bulk_strain_;
   const bool displacement_;
@@ -587,6 +594,7 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   const int m_settle_;          // increments per cycle before the last (settling_increments)
   std::vector<double> p_;       // the pressure (Pa); it moves over the cycle only when β ≠ 0
   std::vector<double> lo_, hi_;
+  bool mirror_ = false;         // the last cycle's reloading half mirrored (mirrors())
   double capacity_ = 0.0;       // f P on the grid, summed as iterate() sums it (N/m)
   double Q_prev_ = 0.0, x_prev_ = 0.0;  // at the end of the last increment
   double extra_ = 0.0;          // the rigid sliding of the last increment beyond the stick limit (m)
@@ -746,6 +754,27 @@ IncrementalSlipSolver::AmplitudeRun::AmplitudeRun(const IncrementalSlipSolver& s
   traction_bounds(p_, f_, lo_, hi_);
   for (int i = 0; i < n_; ++i)
     if (hi_[i] > 0.0) capacity_ += h_ * hi_[i];
+  mirror_ = mirrors();
+}
+
+// The equations are unchanged by x → −x with q → −q and Q → −Q when the gap is even in x and no bulk strain (odd
+// in Q, even in x) is applied; the grid's cells then pair as i ↔ n − 1 − i. A worn gap is even only as far as the
+// solves that wore it (their pressure is even to their tolerance, about 1e-6 of its peak): the gap is taken as even
+// where its odd part is within kMirrorTolerance = 1e-6 of its largest value, and the cycle on it is then that of
+// the even gap to within about as much, below the asymmetry the mirror neglects anyway (the header).
+bool IncrementalSlipSolver::AmplitudeRun::mirrors() const {
+  if (!options_.mirror_half_cycle || !coupled_ || displacement_ || bulk_strain_ != 0.0) return false;
+  if (std::abs(grid_.x_min + grid_.x_max) > 1e-12 * (grid_.x_max - grid_.x_min)) return false;
+  const std::span<const double> g = coupling_->g0;
+  double largest = 0.0, odd = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    const double a = g[i], b = g[n_ - 1 - i];
+    if (std::isfinite(a) != std::isfinite(b)) return false;
+    if (!std::isfinite(a)) continue;
+    largest = std::max(largest, std::abs(a));
+    odd = std::max(odd, std::abs(a - b));
+  }
+  return odd <= kMirrorTolerance * largest;
 }
 
 void IncrementalSlipSolver::AmplitudeRun::first_loading() {
@@ -764,7 +793,11 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
   std::vector<double> hi_unloaded = hi_;
   bool sliding_unloaded = false;  // the bodies slide rigidly through the unloaded phase (δ = 0): no cell sticks
   const int m = c < options_.cycles ? m_settle_ : m_;
-  for (int j = 1; j <= m; ++j) {
+  const bool half = mirror_ && c == options_.cycles;
+  const std::size_t loop_start = r.loop.size();
+  const IncrementState top = half ? state_ : IncrementState{};  // the steady top the half cycle starts from
+  const std::vector<double> p_top = half ? p_ : std::vector<double>{};
+  for (int j = 1; j <= (half ? m / 2 : m); ++j) {
     // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
     const double xt = 2 * j <= m ? X_ * (1.0 - 4.0 * j / m) : X_ * (-1.0 + 4.0 * (j - m / 2) / m);
     r.solves.push_back(step(xt, c, j));
@@ -777,6 +810,7 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
     }
     if (4 * j == 3 * m) r.q_reloaded = state_.q;
   }
+  if (half) mirror_reloading(r, loop_start, top, p_top);
   if (coupled_) result_.p_top = p_;
   r.q_top = state_.q;
   close_cycle(grid_, w_max_, w_min_, hi_, hi_unloaded, r);
@@ -785,6 +819,40 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
   if (sliding_unloaded) r.stick_zone_unloaded.reset();
   classify(r, sliding);
   result_.cycles.push_back(std::move(r));
+}
+
+// The unloading half has left in w_ the slip W(x) at the bottom and in w_min_, w_max_ its extremes. The reloading
+// half slips at x as the unloading half did at −x, reversed: w(x, t) = W(x) − w_u(−x, t), so over it w(x) reaches
+// W(x) − w_min,u(−x) and W(x) − w_max,u(−x); its slip travelled and energy are those of −x; its loop points are the
+// unloading's with Q and δ reversed. It ends at the bottom mirrored, q(x) = −q_bottom(−x), which is the top the half
+// cycle started from but for what the first loading left locked in at the stick zone's edges (about 2e-3 p0 there;
+// the header): the cycle reports that start, the steady top as a full march reaches it, as its top.
+void IncrementalSlipSolver::AmplitudeRun::mirror_reloading(CycleResult& r, std::size_t first_loop_point,
+                                                           const IncrementState& top,
+                                                           const std::vector<double>& p_top) {
+  const auto mirror = [n = n_](int i) { return n - 1 - i; };
+  const std::vector<double> e = r.energy_density, travelled = r.slip_travelled, w_min = w_min_, w_max = w_max_;
+  for (int i = 0; i < n_; ++i) {
+    r.energy_density[i] += e[mirror(i)];
+    r.slip_travelled[i] += travelled[mirror(i)];
+    w_max_[i] = std::max(w_max[i], w_[i] - w_min[mirror(i)]);
+    w_min_[i] = std::min(w_min[i], w_[i] - w_max[mirror(i)]);
+  }
+  r.q_reloaded.assign(n_, 0.0);
+  for (int i = 0; i < n_; ++i) r.q_reloaded[i] = -r.q_unloaded[mirror(i)];
+  const std::size_t end = r.loop.size();
+  for (std::size_t j = first_loop_point; j < end; ++j) {
+    LoopPoint point = r.loop[j];
+    point.Q = -point.Q;
+    point.delta = -point.delta;
+    r.loop.push_back(point);
+  }
+  state_ = top;
+  p_ = p_top;
+  traction_bounds(p_, f_, lo_, hi_);
+  Q_prev_ = -Q_prev_;
+  x_prev_ = -x_prev_;
+  result_.mirrored = true;
 }
 
 SolveSummary IncrementalSlipSolver::AmplitudeRun::step(double x_t, int cycle, int k) {

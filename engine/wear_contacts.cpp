@@ -157,7 +157,10 @@ IncrementalSlipOptions incremental_options(const Scene& scene, double beta, cons
   IncrementalSlipOptions o;
   o.increments_per_cycle = scene.tangential->increments;
   if (beta != 0.0) o.cycles = 2;  // as the cycle stage: the first cycle after the first loading is not yet steady
-  if (beta != 0.0 && load.history.empty() && !(load.delta > 0.0)) o.settling_increments = kSettlingIncrements;
+  if (beta != 0.0 && load.history.empty() && !(load.delta > 0.0)) {
+    o.settling_increments = kSettlingIncrements;
+    o.mirror_half_cycle = true;  // on an even worn gap (header)
+  }
   o.normal.proportioning = kWearProportioning;  // the coupled normal solves are on the worn profile
   return o;
 }

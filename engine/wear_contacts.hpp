@@ -181,9 +181,11 @@ class AnalogyContactResponse : public WearContact {
 // area. A response is lagged while
 //     γ · drift · |A(w) − A(w_r)|  ≤  kLagSafety · τ · A(w),   τ = effects.wear.tolerance, kLagSafety = 1/2,
 // i.e. while the lag has added less than half what one accepted step may err by (the stepper holds each step's error to
-// τ max w; here the worn area's share), so that the run's error at most grows by half of the stepper's own; and in full
-// otherwise, at the first call, when the uncoupled cycle's stick zones move, and when its contact reaches the window's
-// ends (the coupled response raises the error). Each refresh measures ε for the correction it replaces and sets γ = ε /
+// τ max w; here the worn area's share), aiming to add at most half of the stepper's own error (measured against a run
+// coupled at every response at τ/10: it adds once or twice the stepper's own, about 1e-3 of the worn area, since γ ·
+// drift misses part of the edge cells' error; docs/PERFORMANCE.md, "Dissimilar bodies"); and in full otherwise, at
+// the first call, when the uncoupled cycle's stick zones move, and when its contact reaches the window's ends (the
+// coupled response raises the error). Each refresh measures ε for the correction it replaces and sets γ = ε /
 // drift from it, a quarter of the last γ at least (at the first, with no ε yet, γ = ρ = Σ_i p_i |Δs_i| / Σ_i p_i s_c,i,
 // the correction's share of the rate: the correction taken to move with the rate it corrects), so a correction that
 // moved more than γ said makes the next refresh come sooner. The drift and ε are in the worn area's norm, not cell by

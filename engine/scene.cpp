@@ -1357,8 +1357,11 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
                                        "load.blocks once, in order: give their sum",
                                        s.wear->cycles, total));
       if (s.stress || s.crack || s.life)
-        problems.push_back("load.blocks: given with effects.stress, effects.crack or effects.life, whose phases "
-                           "assume one cycle; with load.blocks they are not supported yet");
+        problems.push_back("load.blocks: given with effects.stress, effects.crack or effects.life, which are "
+                           "computed at the top and the bottom of one steady cycle, while the blocks load a cycle "
+                           "of their own each (and a life under blocks would need a damage sum over them, which "
+                           "fretwear does not model): run the blocks with effects.wear alone, and each block's load "
+                           "as a scene of its own for its stresses, cracks and life");
       if (s.bulk_stress != 0.0)
         for (std::size_t i = 0; i < s.blocks.size(); ++i)
           if (!s.blocks[i].history.empty())
@@ -1374,8 +1377,9 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
         problems.push_back(
             "load.bulk_stress: given with load.history, which gives sigma_bulk at each point; remove it");
       if (given.control == LoadControl::displacement)
-        problems.push_back("load.history: its points give Q; with load.control \"displacement\" it is not supported "
-                           "yet; use load.control \"force\"");
+        problems.push_back("load.history: its points [t, P, Q, sigma_bulk] prescribe Q, which is force control, "
+                           "while load.control \"displacement\" prescribes the relative displacement instead: use "
+                           "load.control \"force\" with the history, or load.delta with a constant P");
       if (s.tangential->route == TangentialRoute::analogy)
         problems.push_back("effects.tangential.route: \"analogy\" cannot run load.history (the analogy needs a "
                            "constant P and Q between fixed limits); use \"auto\" or \"incremental\"");

@@ -333,6 +333,10 @@ TEST_CASE("dissimilar bodies take the incremental route under any load and every
   CHECK_NOTHROW(parse_scene(j));
   j["load"] = {{"P", 1e5}, {"history", {{0, 1e5, 2e4, 0}, {1, 1e5, -2e4, 0}, {2, 1e5, 2e4, 0}}}};
   CHECK_NOTHROW(parse_scene(j));
+  // A history prescribes Q at its points: with displacement control it is refused with that reason, whatever the
+  // bodies.
+  j["load"]["control"] = "displacement";
+  CHECK(reports(j, "load.history", {"prescribe Q", "force control", "load.control \"force\""}));
 }
 
 TEST_CASE("names must make a folder name") {
@@ -684,6 +688,9 @@ TEST_CASE("load blocks: parsed with wear, every problem named at its block") {
   bad = j;
   bad["load"]["blocks"][0]["Q"] = {{"amplitude", 1}, {"ratio", 0.5}};
   CHECK(reports(bad, "load.blocks[0].Q", {"exactly one"}));
+  bad = j;
+  bad["effects"]["stress"] = json::object();  // refused with the reason: one cycle's phases, a cycle per block
+  CHECK(reports(bad, "load.blocks", {"effects.stress", "one steady cycle", "a cycle of their own each"}));
   bad = j;
   bad["load"]["blocks"][0]["cyles"] = 3;
   CHECK(reports(bad, "load.blocks[0].cyles", {"unknown key"}));

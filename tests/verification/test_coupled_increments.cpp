@@ -29,6 +29,7 @@
 #include "engine/wear_contacts.hpp"
 
 using namespace fretwear;
+using test::max_abs_diff;
 
 namespace {
 
@@ -54,13 +55,6 @@ Run run(int cells, IncrementalSlipOptions o) {
   o.cycles = 2;
   IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve(n.state, load, nullptr, &coupling);
   return {std::move(m), std::move(n), std::move(r)};
-}
-
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  REQUIRE(a.size() == b.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-  return d;
 }
 
 // The two runs report the same cycle: energy, shear at the top, stick zone, pressure at the top.

@@ -27,6 +27,7 @@
 #include "engine/simulation.hpp"
 
 using namespace fretwear;
+using test::max_abs_diff;
 
 namespace {
 
@@ -64,13 +65,6 @@ Run run(Material specimen, double ratio, bool mirror, double bulk_stress = 0.0, 
   o.mirror_half_cycle = mirror;
   IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve(n.state, load, nullptr, &coupling);
   return {std::move(m), std::move(n), std::move(r)};
-}
-
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  REQUIRE(a.size() == b.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-  return d;
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include "engine/simulation.hpp"
 
 using namespace fretwear;
+using test::max_abs_diff;
 
 namespace {
 
@@ -137,13 +138,6 @@ DisplacementRun run_displacement(double delta, int cycles = 1, int cells = 1024)
   CyclicLoad load{s.P, 0.0, *s.friction, 0.0, delta};
   IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve(n.state, load, &datum);
   return {std::move(m), std::move(n), std::move(r), a};
-}
-
-double max_abs_diff(const std::vector<double>& x, const std::vector<double>& y) {
-  REQUIRE(x.size() == y.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) d = std::max(d, std::abs(x[i] - y[i]));
-  return d;
 }
 
 }  // namespace

@@ -37,6 +37,7 @@
 #include "engine/simulation.hpp"
 
 using namespace fretwear;
+using test::max_abs_diff;
 
 namespace {
 
@@ -66,13 +67,6 @@ Run run(const Scene& s, IncrementalSlipOptions o = {}, double beta = std::numeri
   const CyclicLoad load{s.P, s.Q_max(), *s.friction, 0.0};
   IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve(n.state, load, nullptr, &coupling);
   return {std::move(m), std::move(n), std::move(r), b};
-}
-
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  REQUIRE(a.size() == b.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-  return d;
 }
 
 double max_of(const std::vector<double>& a) { return *std::max_element(a.begin(), a.end()); }

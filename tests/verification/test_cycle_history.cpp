@@ -22,19 +22,13 @@
 #include "engine/simulation.hpp"
 
 using namespace fretwear;
+using test::max_abs_diff;
 
 namespace {
 
 constexpr double kSame = 1e-10;
 constexpr double kRepeat = 1e-9;
 constexpr double kRepeatTraction = 1e-6;
-
-double max_abs_diff(const std::vector<double>& x, const std::vector<double>& y) {
-  REQUIRE(x.size() == y.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) d = std::max(d, std::abs(x[i] - y[i]));
-  return d;
-}
 
 }  // namespace
 

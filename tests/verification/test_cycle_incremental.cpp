@@ -31,6 +31,7 @@
 #include "engine/wear_stage.hpp"
 
 using namespace fretwear;
+using test::max_abs_diff;
 
 namespace {
 
@@ -59,13 +60,6 @@ Run run_incremental(const Scene& s, IncrementalSlipOptions o = {}) {
   const IncrementalSlipSolver solver(*m.kernel, o);
   IncrementalResult r = solver.solve(n.state, cyclic_load(s, m));
   return {std::move(m), std::move(n), std::move(r)};
-}
-
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  REQUIRE(a.size() == b.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-  return d;
 }
 
 double edge_tolerance(const Grid& g) { return 0.25 * g.h(); }

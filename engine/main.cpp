@@ -189,6 +189,13 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
                                  w["implicit_solves"].get<long>(), w["cycle_solves"].get<long>(),
                                  v(w["mean_iterations_implicit"]), v(w["mean_iterations_cycle"]),
                                  v(w["explicit_stability_limit"]));
+      if (w.contains("coupling")) {
+        const auto& cp = w["coupling"];
+        std::cout << fmt::format("  wear coupling (dissimilar bodies): {} cycle responses, {} coupled ({} of them "
+                                 "half a cycle mirrored), {} by the lagged correction\n",
+                                 cp["responses"].get<long>(), cp["coupled"].get<long>(), cp["mirrored"].get<long>(),
+                                 cp["lagged"].get<long>());
+      }
     }
   }
   if (summary.contains("stress") && summary["stress"].contains("phases") &&

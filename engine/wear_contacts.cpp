@@ -312,6 +312,7 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   cycle_solves += r.n_increments;
   cycle_iterations += r.n_iterations;
   ++coupled_responses_;
+  if (r.mirrored) ++mirrored_responses_;
   cycle_ = r.cycles.back();
   if (cycle_.slip_travelled.empty())  // Q ≥ f P at some point of the cycle under force control: the bodies slide
     throw UnsupportedError("effects.wear: " + cycle_.message);
@@ -371,6 +372,7 @@ json IncrementalContactResponse::save() const {
   if (P_ref_ != load_.P) j["reference"] = contact_state_json(reference_);
   j["q_top"] = q_top_;
   j["coupled_responses"] = coupled_responses_;
+  j["mirrored_responses"] = mirrored_responses_;
   j["lagged_responses"] = lagged_responses_;
   if (analogy_)
     j["lagged"] = {{"analogy", analogy_->save()},
@@ -392,6 +394,7 @@ void IncrementalContactResponse::restore(const json& j) {
   restore_counts(j);
   if (j.contains("q_top")) j.at("q_top").get_to(q_top_);
   coupled_responses_ = j.value("coupled_responses", 0L);
+  mirrored_responses_ = j.value("mirrored_responses", 0L);
   lagged_responses_ = j.value("lagged_responses", 0L);
   if (!j.contains("lagged")) {
     analogy_.reset();  // written by a run whose every response was coupled

@@ -213,9 +213,13 @@ class IncrementalContactResponse : public WearContact {
   double Q_top() const override { return cycle_.Q_peak; }
   // The steady cycle of the last coupled response (the refresh, under Coupling::lagged).
   const CycleResult& last_cycle() const { return cycle_; }
-  // Responses that solved the coupled cycle, and those that took the lagged correction.
+  // Responses that solved the coupled cycle, those of them that marched half of it and mirrored the rest
+  // (mirror_half_cycle, contact/incremental_slip.hpp), and those that took the lagged correction.
   long coupled_responses() const { return coupled_responses_; }
+  long mirrored_responses() const { return mirrored_responses_; }
   long lagged_responses() const { return lagged_responses_; }
+  // Dundurs β of the pair: the cycle is coupled where it is not 0.
+  double beta() const { return beta_; }
   nlohmann::json save() const override;
   void restore(const nlohmann::json& j) override;
 
@@ -241,7 +245,7 @@ class IncrementalContactResponse : public WearContact {
   ContactState reference_;  // under P_ref_ when it is not load.P (a history): p_ref
   CycleResult cycle_;
   std::vector<double> q_top_;  // the shear at the top of the cycle of the last response (Pa)
-  long coupled_responses_ = 0, lagged_responses_ = 0;
+  long coupled_responses_ = 0, mirrored_responses_ = 0, lagged_responses_ = 0;
   // The lagged coupling (null analogy_: every response coupled).
   std::unique_ptr<AnalogyContactResponse> analogy_;
   wear::CycleResponse uncoupled_;      // the analogy's response on the current w (its p warm-starts the next)

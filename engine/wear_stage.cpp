@@ -970,6 +970,10 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     WearRun run(scene, model, control, *contact, stage);
     drive_by(run, effect.stepper, first.rate_max);
   }
+  if (incremental && incremental->beta() != 0.0) {
+    const long coupled = incremental->coupled_responses(), lagged = incremental->lagged_responses();
+    stage.coupling = WearStage::Coupling{coupled + lagged, coupled, incremental->mirrored_responses(), lagged};
+  }
   if (first.rate_max == 0.0) return stage;  // nothing slips: nothing wears
   scars(model, effect, stage);
   stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
@@ -1069,6 +1073,11 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
                    {"pad", body(w.pad)},
                    {"specimen", body(w.specimen)}};
   if (w.frame_positions > 0) out["frame_iterations"] = w.frame_iterations;
+  if (w.coupling)
+    out["coupling"] = {{"responses", w.coupling->responses},
+                       {"coupled", w.coupling->coupled},
+                       {"mirrored", w.coupling->mirrored},
+                       {"lagged", w.coupling->lagged}};
   out["cycles_target"] = e.cycles;
   out["cycles_reached"] = w.cycles_reached;
   if (w.resumed_from) out["resumed_from"] = *w.resumed_from;

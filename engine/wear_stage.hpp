@@ -101,6 +101,13 @@ struct WearStage {
   // 0 where the bodies share one profile. The fixed point's passes, over the steps' Euler solutions.
   int frame_positions = 0;
   long frame_iterations = 0;
+  // Dissimilar bodies (β ≠ 0) by the incremental route: the run's cycle responses, those that solved the coupled
+  // cycle (and of them, those that marched half of it and mirrored the rest) and those that took the lagged
+  // correction (engine/wear_contacts.hpp). Absent for similar bodies and for load.blocks.
+  struct Coupling {
+    long responses = 0, coupled = 0, mirrored = 0, lagged = 0;
+  };
+  std::optional<Coupling> coupling;
   // Each body's scar at the last record (its own frame's where frame_positions > 0, else its share of w): the
   // deepest point, the area, and where its wear exceeds kScarEdge of that depth (m).
   struct Scar {

@@ -25,6 +25,7 @@
 #include "contact/closed_form.hpp"
 #include "contact/incremental_slip.hpp"
 #include "engine/simulation.hpp"
+#include "engine/wear_stage.hpp"
 
 using namespace fretwear;
 using test::max_abs_diff;
@@ -126,4 +127,25 @@ TEST_CASE("coupled mirror: a contact that is not mirror-symmetric, or a bulk str
   CHECK(bulk.r.n_increments == 1 + 4 + 40);
   const Run similar = run({200e9, 0.3}, 0.5, true);  // β = 0: nothing to gain, the pressure is fixed
   CHECK_FALSE(similar.r.mirrored);
+}
+
+TEST_CASE("coupled mirror: a dissimilar wear run says how its cycles were solved, mirrored or lagged") {
+  Scene s = test::hertz_wear(kP, 0.5, 1e4, 128);
+  s.specimen = kAluminium;
+  const RunResult r = Simulation(s).run();
+  REQUIRE(r.wear);
+  const nlohmann::json summary = summarise_wear(s, *r.wear);
+  REQUIRE(summary.contains("coupling"));
+  const nlohmann::json& c = summary["coupling"];
+  MESSAGE(c.dump());
+  const long responses = c["responses"].get<long>(), coupled = c["coupled"].get<long>(),
+             mirrored = c["mirrored"].get<long>(), lagged = c["lagged"].get<long>();
+  CHECK(responses == coupled + lagged);
+  CHECK(coupled > 0);
+  CHECK(lagged > 0);
+  // The Hertz gap worn by mirrored cycles stays even: every coupled cycle is a half cycle mirrored.
+  CHECK(mirrored == coupled);
+  // Similar bodies take the analogy: nothing coupled to count.
+  Scene similar = test::hertz_wear(kP, 0.5, 1e4, 128);
+  CHECK_FALSE(summarise_wear(similar, *Simulation(similar).run().wear).contains("coupling"));
 }

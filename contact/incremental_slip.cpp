@@ -584,8 +584,7 @@ class IncrementalSlipSolver::AmplitudeRun : public Run {
   bool mirrors() const;
   // After the unloading half of cycle r from the state top and the pressure p_top: the reloading half as its mirror
   // image, back at that top.
-  void mirror_reloading(CycleResult& r, std::size_t first_loop_point, const IncrementState& top,
-                        const std::vector<double>& p_top);
+  void mirror_reloading(CycleResult& r, std::size_t first_loop_point, IncrementState top, std::vector<double> p_top);
 
   const double f_, P_, bulk_strain_;
   const bool displacement_;
@@ -795,8 +794,8 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
   const int m = c < options_.cycles ? m_settle_ : m_;
   const bool half = mirror_ && c == options_.cycles;
   const std::size_t loop_start = r.loop.size();
-  const IncrementState top = half ? state_ : IncrementState{};  // the steady top the half cycle starts from
-  const std::vector<double> p_top = half ? p_ : std::vector<double>{};
+  IncrementState top = half ? state_ : IncrementState{};  // the steady top the half cycle starts from
+  std::vector<double> p_top = half ? p_ : std::vector<double>{};
   for (int j = 1; j <= (half ? m / 2 : m); ++j) {
     // +X → −X over the first half, −X → +X over the second; 0, −X, 0 and +X fall exactly on increment ends.
     const double xt = 2 * j <= m ? X_ * (1.0 - 4.0 * j / m) : X_ * (-1.0 + 4.0 * (j - m / 2) / m);
@@ -810,7 +809,7 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
     }
     if (4 * j == 3 * m) r.q_reloaded = state_.q;
   }
-  if (half) mirror_reloading(r, loop_start, top, p_top);
+  if (half) mirror_reloading(r, loop_start, std::move(top), std::move(p_top));
   if (coupled_) result_.p_top = p_;
   r.q_top = state_.q;
   close_cycle(grid_, w_max_, w_min_, hi_, hi_unloaded, r);
@@ -828,18 +827,17 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
 // cycle started from but for what the first loading left locked in at the stick zone's edges (about 2e-3 p0 there;
 // the header): the cycle reports that start, the steady top as a full march reaches it, as its top.
 void IncrementalSlipSolver::AmplitudeRun::mirror_reloading(CycleResult& r, std::size_t first_loop_point,
-                                                           const IncrementState& top,
-                                                           const std::vector<double>& p_top) {
+                                                           IncrementState top, std::vector<double> p_top) {
   const auto mirror = [n = n_](int i) { return n - 1 - i; };
   const std::vector<double> e = r.energy_density, travelled = r.slip_travelled, w_min = w_min_, w_max = w_max_;
+  r.q_reloaded.resize(std::size_t(n_));
   for (int i = 0; i < n_; ++i) {
     r.energy_density[i] += e[mirror(i)];
     r.slip_travelled[i] += travelled[mirror(i)];
     w_max_[i] = std::max(w_max[i], w_[i] - w_min[mirror(i)]);
     w_min_[i] = std::min(w_min[i], w_[i] - w_max[mirror(i)]);
+    r.q_reloaded[i] = -r.q_unloaded[mirror(i)];
   }
-  r.q_reloaded.assign(n_, 0.0);
-  for (int i = 0; i < n_; ++i) r.q_reloaded[i] = -r.q_unloaded[mirror(i)];
   const std::size_t end = r.loop.size();
   for (std::size_t j = first_loop_point; j < end; ++j) {
     LoopPoint point = r.loop[j];
@@ -847,8 +845,8 @@ void IncrementalSlipSolver::AmplitudeRun::mirror_reloading(CycleResult& r, std::
     point.delta = -point.delta;
     r.loop.push_back(point);
   }
-  state_ = top;
-  p_ = p_top;
+  state_ = std::move(top);
+  p_ = std::move(p_top);
   traction_bounds(p_, f_, lo_, hi_);
   Q_prev_ = -Q_prev_;
   x_prev_ = -x_prev_;

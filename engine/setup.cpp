@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -19,28 +20,81 @@ Model model_on(const Scene& scene, const Grid& grid, const WindowChoice& window)
   return m;
 }
 
+// The constant loads on similar bodies whose asymptotes stand for the worn extent of the scene's run. Paper 002's
+// limit (wear_asymptote) is that of similar bodies under one constant load; a scene outside it still wears its slip
+// zones towards some limit, so its window is sized from these stand-ins:
+//  - each loading of the scene (its own, or each block of load.blocks) held constant: load.Q or load.delta as given;
+//    a history at its largest ratio |Q|/(fP) under its largest P (the smallest stick zone it reaches, so the widest
+//    slip zones), with the bulk stress of the point where that ratio is reached, in phase;
+//  - dissimilar bodies (Dundurs β ≠ 0) as the similar pair of the same compliance A = 2/E*, the pad's material with
+//    its modulus scaled: the same contact under P, and the uncoupled pressure's limit, which the lagged coupled run
+//    tends to (engine/wear_contacts.hpp).
+// The scene itself when it is already one such load.
+std::vector<Scene> window_stand_ins(const Scene& scene) {
+  Scene base = scene;
+  base.blocks.clear();
+  const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
+  if (std::abs(pair.beta()) > 1e-12) {
+    Material m = scene.pad;
+    m.E *= ElasticPair(m, m, scene.plane).A() / pair.A();
+    base.pad = base.specimen = m;
+  }
+  const auto held = [&base](std::optional<double> Q_amplitude, std::optional<double> Q_ratio,
+                            std::optional<double> delta, const std::vector<std::array<double, 4>>& history) {
+    Scene s = base;
+    s.Q_amplitude = Q_amplitude, s.Q_ratio = Q_ratio, s.delta = delta, s.history.clear();
+    s.control = delta ? LoadControl::displacement : LoadControl::force;
+    if (history.empty()) return s;
+    double ratio = 0.0;
+    for (const auto& pt : history) {
+      s.P = std::max(s.P, pt[1]);
+      const double r = std::abs(pt[2]) / (*s.friction * pt[1]);
+      if (r > ratio) ratio = r, s.bulk_stress = pt[2] < 0.0 ? -pt[3] : pt[3];
+    }
+    s.Q_amplitude.reset();
+    s.Q_ratio = ratio;
+    return s;
+  };
+  std::vector<Scene> stand_ins;
+  if (scene.blocks.empty())
+    stand_ins.push_back(held(scene.Q_amplitude, scene.Q_ratio, scene.delta, scene.history));
+  for (const LoadBlock& b : scene.blocks) stand_ins.push_back(held(b.Q_amplitude, b.Q_ratio, b.delta, b.history));
+  return stand_ins;
+}
+
 // A wearing contact grows past its original edges up to the asymptote's worn extent (PHYSICS.md, "Wear": x_e > a),
-// which the default window must cover with the same margin: compute the asymptote on a coarse, wide grid.
+// which the default window must cover with the same margin: compute the asymptotes of the stand-ins above on a
+// coarse, wide grid, and cover the widest. A stand-in without a limit (gross slip, reverse slip) adds nothing: a
+// gross-slip run's widening is checked against the window before it starts (engine/preflight.cpp).
 WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
   constexpr int kTrialCells = 1024;
+  const std::vector<Scene> stand_ins = window_stand_ins(scene);
+  const bool own = scene.blocks.empty() && scene.history.empty() &&
+                   std::abs(ElasticPair(scene.pad, scene.specimen, scene.plane).beta()) <= 1e-12;
   const double centre = 0.5 * (w.x_min + w.x_max);
-  double half = 0.5 * (w.x_max - w.x_min);
-  for (int attempt = 0; attempt < 6; ++attempt, half *= 2.0) {
-    const double lo = centre - 2.5 * half, hi = centre + 2.5 * half;
-    const Model trial = model_on(scene, align_to_support(profile, lo, hi, kTrialCells), {lo, hi, "trial", 0.0});
-    const NormalResult normal = solve_normal(scene, trial);
-    const WearAsymptote a = wear_asymptote(scene, trial, normal);
-    if (a.worn_area <= 0.0) return w;
-    if (a.extent.first <= trial.grid.x_min + trial.grid.h() || a.extent.second >= trial.grid.x_max - trial.grid.h())
-      continue;
-    const double l = std::min(a.extent.first, normal.zones.front().left.x);
-    const double r = std::max(a.extent.second, normal.zones.back().right.x);
-    const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
-    return {std::min(w.x_min, c - 1.5 * hw), std::max(w.x_max, c + 1.5 * hw), w.method + "+wear_asymptote",
-            w.expected_half_width};
+  double l = std::numeric_limits<double>::infinity(), r = -l;
+  for (const Scene& s : stand_ins) {
+    double half = 0.5 * (w.x_max - w.x_min);
+    for (int attempt = 0;; ++attempt, half *= 2.0) {
+      if (attempt == 6)
+        throw InputError("grid: the asymptotic worn zone keeps reaching the end of a trial window 64 times the "
+                         "contact; give grid.window");
+      const double lo = centre - 2.5 * half, hi = centre + 2.5 * half;
+      const Model trial = model_on(s, align_to_support(profile, lo, hi, kTrialCells), {lo, hi, "trial", 0.0});
+      const NormalResult normal = solve_normal(s, trial);
+      const WearAsymptote a = wear_asymptote(s, trial, normal);
+      if (a.worn_area <= 0.0) break;
+      if (a.extent.first <= trial.grid.x_min + trial.grid.h() || a.extent.second >= trial.grid.x_max - trial.grid.h())
+        continue;
+      l = std::min({l, a.extent.first, normal.zones.front().left.x});
+      r = std::max({r, a.extent.second, normal.zones.back().right.x});
+      break;
+    }
   }
-  throw InputError("grid: the asymptotic worn zone keeps reaching the end of a trial window 64 times the contact; "
-                   "give grid.window");
+  if (!(l < r)) return w;
+  const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
+  return {std::min(w.x_min, c - 1.5 * hw), std::max(w.x_max, c + 1.5 * hw),
+          w.method + (own ? "+wear_asymptote" : "+wear_stand_in"), w.expected_half_width};
 }
 
 // The wear run's stick zones are whole cells: those the first cycle's corrective contact loads, which it never wears

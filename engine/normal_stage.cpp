@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -124,7 +125,12 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
   if (profile.symmetric_single_zone()) r.load_size_half_width = half_width_for_load(profile, pair.A(), scene.P);
   const Grid& g = r.grid;
   r.g0 = model.g0;
-  const NormalSolver solver(*model.kernel);
+  NormalSolverOptions options;
+  // FRETWEAR_NORMAL_MAX_ITERATIONS (tests only): the normal solve's iteration limit, so that a test can stop it short
+  // of its tolerance and see the ConvergenceError reported (exit status 3, summary.json "not_converged").
+  if (const char* cap = std::getenv("FRETWEAR_NORMAL_MAX_ITERATIONS"))
+    options.max_iterations = std::max(1, std::atoi(cap));
+  const NormalSolver solver(*model.kernel, options);
   r.summary = solver.solve(r.g0, scene.P, r.state);
   if (r.summary.termination == Termination::no_admissible_cell)
     throw InputError(fmt::format("grid.window: [{:.6g}, {:.6g}] m holds no cell where the profile's gap is finite (the "

@@ -60,6 +60,23 @@ def test_the_physics_checks_before_solving_are_the_command_lines():
         fretwear.run(scene)
 
 
+def test_a_solve_stopped_short_raises_convergence_error_with_its_residual(in_empty_folder, monkeypatch):
+    # The test hook FRETWEAR_NORMAL_MAX_ITERATIONS caps the normal solve at two iterations, as the command line's
+    # test of exit status 3 does; no real scene fails to converge on demand.
+    monkeypatch.setenv("FRETWEAR_NORMAL_MAX_ITERATIONS", "2")
+    scene = example("hertz_normal", **{"grid.cells": 256})
+    with pytest.raises(fretwear.ConvergenceError, match=r"normal contact: the solve stopped \(max_iterations\) "
+                       r"with residual"):
+        fretwear.run(scene)
+    assert files_under(in_empty_folder) == []
+    with pytest.raises(fretwear.ConvergenceError):
+        fretwear.run(scene, output=str(in_empty_folder / "out"))
+    summary = json.loads((in_empty_folder / "out" / "summary.json").read_text())
+    assert summary["status"] == "not_converged" and "residual" in summary["message"]
+    monkeypatch.delenv("FRETWEAR_NORMAL_MAX_ITERATIONS")
+    assert fretwear.run(scene).summary["contact"]["cells_in_contact"] > 0
+
+
 def test_nothing_is_written_without_output(in_empty_folder):
     scene = example("hertz_wear", **{"output.dir": str(in_empty_folder / "would_be_here")})
     result = fretwear.run(scene)

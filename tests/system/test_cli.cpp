@@ -1,4 +1,5 @@
 // The fretwear program as a user meets it: exit status, what is written and what is not.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +63,29 @@ TEST_CASE("an invalid scene exits with status 2, names every problem and writes 
   CHECK(r.all().find("materials.both.E") != std::string::npos);
   CHECK(r.all().find("gird: unknown key (did you mean \"grid\"?)") != std::string::npos);
   CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "wrote: " << join(changes(before, s.snapshot())));
+}
+
+TEST_CASE("a solve stopped short of its tolerance exits with status 3, naming its residual, and says so in summary") {
+  // The test hook FRETWEAR_NORMAL_MAX_ITERATIONS caps the normal solve at two iterations: no real scene fails to
+  // converge on demand. The user's files beside the scene are left as they were.
+  Scratch s;
+  s.write("s.json", kGood);
+  s.write("notes.txt", "mine");
+  const Outcome r = s.fretwear({"run", "s.json"}, {{"FRETWEAR_NORMAL_MAX_ITERATIONS", "2"}});
+  CHECK_MESSAGE(r.exited(kNotConverged), r.describe());
+  CHECK(r.err.find("normal contact: the solve stopped (max_iterations) with residual") != std::string::npos);
+  const fs::path dir = s.work / "output" / "cli";
+  const json summary = json::parse(std::ifstream(dir / "summary.json"));
+  CHECK(summary["status"] == "not_converged");
+  CHECK(summary["message"].get<std::string>().find("residual") != std::string::npos);
+  std::vector<std::string> written;
+  for (const auto& e : fs::directory_iterator(dir)) written.push_back(e.path().filename().string());
+  std::sort(written.begin(), written.end());
+  CHECK(written == std::vector<std::string>{".fretwear", "summary.json"});  // the folder's mark and the summary
+  CHECK(fretwear::test::read_file(s.work / "notes.txt") == "mine");
+  // Without the cap the same scene runs.
+  const Outcome again = s.fretwear({"run", "s.json", "-q"});
+  CHECK_MESSAGE(again.exited(kDone), again.describe());
 }
 
 TEST_CASE("file problems exit with status 2 and write nothing") {

@@ -140,6 +140,9 @@ SolveSummary IncrementalSlipSolver::solve_bounded(std::span<const double> lo, st
 
 namespace {
 
+// Relative: how far |Q| may exceed h Σ hi by round-off and still be carried (BoxConstrainedCg::feasible).
+constexpr double kCapacityRoundOff = 1e-12;
+
 // A preconditioned run that has not halved its best residual for this many iterations has stalled.
 constexpr int kStallIterations = 200;
 
@@ -154,8 +157,10 @@ class BoxConstrainedCg {
                    bool preconditioned);
 
   bool preconditioned() const { return preconditioned_; }
-  // Some cell can carry traction, and the bounds can carry |Q|: h Σ hi ≥ |Q|.
-  bool feasible() const { return last_ >= 0 && !(std::abs(inc_.Q) > capacity_); }
+  // Some cell can carry traction, and the bounds can carry |Q|: h Σ hi ≥ |Q|, but for round-off. At Q = ±f P (the
+  // stick limit, where displacement control's search ends) the bounds f p of a coupled increment's pressure, which
+  // its normal solve balances to P in floating point, may sum to f P less a few ulps; |Q| is then taken as h Σ hi.
+  bool feasible() const { return last_ >= 0 && !(std::abs(inc_.Q) > capacity_ * (1.0 + kCapacityRoundOff)); }
   // The slip scale d, and a feasible start: the previous traction shifted uniformly (and clamped) to the new load.
   void start();
   // r of the stopping criterion, on an exact u whenever r could stop the run (`last`: the iteration limit is reached).
@@ -237,7 +242,7 @@ void BoxConstrainedCg::start() {
   const double half_span = 0.5 * (grid_.x(last_) - grid_.x(first_) + h_);
   d_ = kernel_.A() * std::abs(inc_.Q - inc_.Q_prev) + std::abs(d_eps_) * half_span;
   if (!(d_ > 0.0)) d_ = kernel_.A() * capacity_;  // nothing changes: measure against the contact's own scale
-  target_ = inc_.Q / h_;
+  target_ = std::clamp(inc_.Q, -capacity_, capacity_) / h_;
   const std::vector<double> y = q_;
   if (project(y, lo_, hi_, contact_, target_, q_)) kernel_.apply(q_, u_);
   u_exact_ = true;

@@ -234,7 +234,9 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
                                       : solver.solve(normal.state, load, &datum, &coupling);
   stage.ran = TangentialRoute::incremental;
   stage.route = plan.analogy_first() ? "incremental (auto: the analogy found reverse slip)" : plan.incremental_because;
-  if (plan.dissimilar())
+  if (plan.dissimilar() && r.n_increments == 0)  // gross slip under force control: nothing marched
+    stage.route += fmt::format(" [beta = {:.4g}]", plan.beta);
+  else if (plan.dissimilar())
     stage.route += fmt::format(" [beta = {:.4g}: {} coupling sweeps over {} increments, at most {}]", plan.beta,
                                r.n_coupling_sweeps, r.n_increments, r.max_coupling_sweeps);
   stage.result = r.cycles.back();
@@ -301,9 +303,12 @@ nlohmann::json summarise_cycle(const Scene& scene, const CycleStage& st) {
                 {"reference_x", st.reference_x},
                 {"corrective_solves", c.solves.size()}};
   if (!c.message.empty()) cycle["message"] = c.message;
-  if (st.plan.dissimilar()) {  // β ≠ 0: the shear moves the pressure
-    cycle["p_max_top"] = *std::max_element(st.p_top.begin(), st.p_top.end());
-    cycle["p_max_bottom"] = *std::max_element(st.p_bottom.begin(), st.p_bottom.end());
+  if (st.plan.dissimilar()) {  // β ≠ 0: the shear moves the pressure; under force control in gross slip, undetermined
+    const auto largest = [](const std::vector<double>& p) {
+      return p.empty() ? json(nullptr) : json(*std::max_element(p.begin(), p.end()));
+    };
+    cycle["p_max_top"] = largest(st.p_top);
+    cycle["p_max_bottom"] = largest(st.p_bottom);
   }
   if (scene.control == LoadControl::displacement) {
     cycle["delta"] = *scene.delta;

@@ -3,6 +3,7 @@
 // either runs (exit 0) or is refused with exit 2 by both `fretwear validate` and `fretwear run` with a message
 // naming the reason, and nothing written. The table below is the contract: a combination that becomes supported is
 // a one-line change of its row.
+#include <fstream>
 #include <map>
 #include <string>
 #include <tuple>
@@ -84,4 +85,30 @@ TEST_CASE("matrix: stress, crack, life refused where force control slides with a
   json force = matrix_scene("dissimilar", "force", "stress");
   force["load"]["Q"] = {{"ratio", 1.1}};
   check_scene({"dissimilar sliding × stress", force.dump(), Exits{kInvalid}, "no coupled pressure"});
+}
+
+// The cycle alone past the stick limit, for each pair and load: force control and a history that reach |Q| ≥ f P
+// are reported as gross slip without fields, displacement control slides by the rest. It crashed for dissimilar
+// bodies under force control and a history (no coupled pressure at the top to summarise), and stopped with exit 3
+// under displacement control on steel and aluminium (the bounds of the coupled pressure a few ulps short of f P).
+TEST_CASE("matrix: the cycle past the stick limit runs for every pair and load, in gross slip") {
+  for (const char* pair : {"similar", "dissimilar"})
+    for (const char* load : {"force", "displacement", "history"}) {
+      json j = matrix_scene(pair, load, "cycle");
+      if (std::string(pair) == "dissimilar")  // steel on aluminium, β = −0.11
+        j["materials"]["specimen"] = {{"E", 71e9}, {"nu", 0.33}};
+      j["grid"]["cells"] = 128;
+      if (std::string(load) == "force") j["load"]["Q"] = {{"ratio", 1.3}};
+      if (std::string(load) == "displacement") j["load"]["delta"] = 3e-6;
+      if (std::string(load) == "history") j["load"]["history"][2] = {2, 1e5, -6e4, 0};  // |Q| > f P = 5e4 N/m
+      const std::string label = std::string(pair) + " × " + load + " past the stick limit";
+      Scratch s;
+      s.write("s.json", j.dump());
+      const Outcome r = s.fretwear({"run", "s.json", "-q"});
+      INFO("case: " << label);
+      REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+      const fs::path folder = s.work / "output" / j["name"].get<std::string>();
+      const json summary = json::parse(std::ifstream(folder / "summary.json"));
+      CHECK(summary["cycle"]["regime"] == "gross_slip");
+    }
 }

@@ -429,6 +429,15 @@ TEST_CASE("dissimilar: displacement control is continuous as beta tends to 0, an
   CHECK(g.Q_max == test::rel(gross.friction.value() * gross.P, 1e-9));
   CHECK(g.result.sliding_amplitude > 0.0);
   CHECK_FALSE(g.result.stick_zone);
+
+  // Steel on aluminium at 128 cells: there the bounds f p of the coupled pressure at Q = f P, the search's end, sum
+  // to f P less a few ulps, and the increment must still be carried (it stopped with no_admissible_cell, exit 3).
+  const Scene aluminium = under_displacement(dissimilar_cycle({71e9, 0.33}, 128), 3e-6);
+  const Model ma = make_model(aluminium);
+  const CycleStage al = solve_cycle(aluminium, ma, solve_normal(aluminium, ma));
+  CHECK(al.result.regime == Regime::gross_slip);
+  CHECK(al.Q_max == test::rel(aluminium.friction.value() * aluminium.P, 1e-9));
+  CHECK(al.result.sliding_amplitude > 0.0);
 }
 
 // A load history of dissimilar bodies: each increment is a coupled increment under its own P. The in-phase cycle

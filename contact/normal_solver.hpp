@@ -104,9 +104,10 @@ class NormalSolver {
   const NormalSolverOptions& options() const { return options_; }
 
  private:
-  // One constrained-CG run; with the preconditioner it also stops when it stalls (solve() then falls back).
+  // One constrained-CG run; with the preconditioner it also stops when it stalls (solve() then falls back), and
+  // without it when plain_stall > 0 iterations have not halved its best residual.
   SolveSummary iterate(std::span<const double> g0, double P, ContactState& state, std::span<const double> shift,
-                       bool use_preconditioner) const;
+                       bool use_preconditioner, int plain_stall = 0) const;
   const HalfPlaneKernel& kernel_;
   NormalSolverOptions options_;
   bool preconditioned_ = false;  // the options ask for the kernel's inverse spectrum, and C is positive definite

@@ -23,9 +23,11 @@ Model model_on(const Scene& scene, const Grid& grid, const WindowChoice& window)
 // The constant loads on similar bodies whose asymptotes stand for the worn extent of the scene's run. Paper 002's
 // limit (wear_asymptote) is that of similar bodies under one constant load; a scene outside it still wears its slip
 // zones towards some limit, so its window is sized from these stand-ins:
-//  - each loading of the scene (its own, or each block of load.blocks) held constant: load.Q or load.delta as given;
-//    a history at its largest ratio |Q|/(fP) under its largest P (the smallest stick zone it reaches, so the widest
-//    slip zones), with the bulk stress of the point where that ratio is reached, in phase;
+//  - each loading of the scene (its own, or each block of load.blocks) held constant: load.Q as given, load.delta
+//    without the bulk stress (with it the limit is not established; the stick zone shifts by a fraction of its
+//    width, well inside the window's margin); a history at its largest ratio |Q|/(fP) under its largest P (the
+//    smallest stick zone it reaches, so the widest slip zones), with the bulk stress of the point where that ratio
+//    is reached, in phase;
 //  - dissimilar bodies (Dundurs β ≠ 0) as the similar pair of the same compliance A = 2/E*, the pad's material with
 //    its modulus scaled: the same contact under P, and the uncoupled pressure's limit, which the lagged coupled run
 //    tends to (engine/wear_contacts.hpp).
@@ -44,6 +46,7 @@ std::vector<Scene> window_stand_ins(const Scene& scene) {
     Scene s = base;
     s.Q_amplitude = Q_amplitude, s.Q_ratio = Q_ratio, s.delta = delta, s.history.clear();
     s.control = delta ? LoadControl::displacement : LoadControl::force;
+    if (delta) s.bulk_stress = 0.0;  // δ's limit with a bulk stress is not established: the stand-in is δ's without
     if (history.empty()) return s;
     double ratio = 0.0;
     for (const auto& pt : history) {
@@ -70,6 +73,7 @@ WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowCh
   constexpr int kTrialCells = 1024;
   const std::vector<Scene> stand_ins = window_stand_ins(scene);
   const bool own = scene.blocks.empty() && scene.history.empty() &&
+                   !(scene.control == LoadControl::displacement && scene.bulk_stress != 0.0) &&
                    std::abs(ElasticPair(scene.pad, scene.specimen, scene.plane).beta()) <= 1e-12;
   const double centre = 0.5 * (w.x_min + w.x_max);
   double l = std::numeric_limits<double>::infinity(), r = -l;

@@ -1,10 +1,11 @@
-// A wear run without paper 002's asymptote of its own (dissimilar bodies, a load history, load blocks) kept the
-// window of the unworn contact: `validate` passed it, and the run stopped with exit 2 when the worn contact reached
-// the window's end, its computing lost (steel on aluminium at Q/fP = 0.95 after 2 s). The default window is now sized
-// from stand-ins that have an asymptote (engine/setup.cpp: each load held constant at its largest ratio, on the
-// similar pair of the same compliance), so these runs finish, and their worn contact stays inside the window with
-// the margin the asymptote's window keeps. Each case wears well past the unworn contact's window (checked: the
-// regression is exercised) at 128 cells, 10^5 cycles.
+// A wear run without paper 002's asymptote of its own (dissimilar bodies, a load history, load blocks, displacement
+// control with a bulk stress) kept the window of the unworn contact: `validate` passed it, and the run stopped with
+// exit 2 when the worn contact reached the window's end, its computing lost (steel on aluminium at Q/fP = 0.95
+// after 2 s). The default window is now sized from stand-ins that have an asymptote (engine/setup.cpp: each load
+// held constant at its largest ratio, δ without the bulk stress, on the similar pair of the same compliance), so
+// these runs finish, and their worn contact stays inside the window with the margin the asymptote's window keeps.
+// Each case wears well past the unworn contact's window (checked: the regression is exercised) at 128 cells, 10^5
+// cycles.
 #include <algorithm>
 #include <string>
 
@@ -75,5 +76,14 @@ TEST_CASE("a wear run under load blocks stays inside the default window") {
   gentle.Q_ratio = 0.5, gentle.cycles = 1000.0;
   hard.Q_ratio = kRatio, hard.cycles = kCycles - 1000.0;
   s.blocks = {gentle, hard};
+  wears_inside_default_window(s);
+}
+
+TEST_CASE("a wear run under displacement control with a bulk stress stays inside the default window") {
+  Scene s = test::hertz_wear(kP, 0.5, kCycles, kCells);
+  s.Q_ratio.reset();
+  s.control = LoadControl::displacement;
+  s.delta = 1.2e-6;
+  s.bulk_stress = 1e8;
   wears_inside_default_window(s);
 }

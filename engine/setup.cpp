@@ -31,8 +31,14 @@ Model model_on(const Scene& scene, const Grid& grid, const WindowChoice& window)
 //  - dissimilar bodies (Dundurs β ≠ 0) as the similar pair of the same compliance A = 2/E*, the pad's material with
 //    its modulus scaled: the same contact under P, and the uncoupled pressure's limit, which the lagged coupled run
 //    tends to (engine/wear_contacts.hpp).
-// The scene itself when it is already one such load.
-std::vector<Scene> window_stand_ins(const Scene& scene) {
+// The scene itself when it is already one such load (`itself`).
+struct StandIns {
+  std::vector<Scene> scenes;
+  bool itself = true;
+};
+StandIns window_stand_ins(const Scene& scene) {
+  StandIns out;
+  out.itself = scene.blocks.empty() && scene.history.empty();
   Scene base = scene;
   base.blocks.clear();
   const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
@@ -40,13 +46,17 @@ std::vector<Scene> window_stand_ins(const Scene& scene) {
     Material m = scene.pad;
     m.E *= ElasticPair(m, m, scene.plane).A() / pair.A();
     base.pad = base.specimen = m;
+    out.itself = false;
   }
-  const auto held = [&base](std::optional<double> Q_amplitude, std::optional<double> Q_ratio,
-                            std::optional<double> delta, const std::vector<std::array<double, 4>>& history) {
+  const auto held = [&base, &out](std::optional<double> Q_amplitude, std::optional<double> Q_ratio,
+                                  std::optional<double> delta, const std::vector<std::array<double, 4>>& history) {
     Scene s = base;
     s.Q_amplitude = Q_amplitude, s.Q_ratio = Q_ratio, s.delta = delta, s.history.clear();
     s.control = delta ? LoadControl::displacement : LoadControl::force;
-    if (delta) s.bulk_stress = 0.0;  // δ's limit with a bulk stress is not established: the stand-in is δ's without
+    if (delta && s.bulk_stress != 0.0) {  // δ's limit with a bulk stress is not established: the stand-in is δ's
+      s.bulk_stress = 0.0;                // without it
+      out.itself = false;
+    }
     if (history.empty()) return s;
     double ratio = 0.0;
     for (const auto& pt : history) {
@@ -58,11 +68,10 @@ std::vector<Scene> window_stand_ins(const Scene& scene) {
     s.Q_ratio = ratio;
     return s;
   };
-  std::vector<Scene> stand_ins;
   if (scene.blocks.empty())
-    stand_ins.push_back(held(scene.Q_amplitude, scene.Q_ratio, scene.delta, scene.history));
-  for (const LoadBlock& b : scene.blocks) stand_ins.push_back(held(b.Q_amplitude, b.Q_ratio, b.delta, b.history));
-  return stand_ins;
+    out.scenes.push_back(held(scene.Q_amplitude, scene.Q_ratio, scene.delta, scene.history));
+  for (const LoadBlock& b : scene.blocks) out.scenes.push_back(held(b.Q_amplitude, b.Q_ratio, b.delta, b.history));
+  return out;
 }
 
 // A wearing contact grows past its original edges up to the asymptote's worn extent (PHYSICS.md, "Wear": x_e > a),
@@ -71,13 +80,10 @@ std::vector<Scene> window_stand_ins(const Scene& scene) {
 // gross-slip run's widening is checked against the window before it starts (engine/preflight.cpp).
 WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
   constexpr int kTrialCells = 1024;
-  const std::vector<Scene> stand_ins = window_stand_ins(scene);
-  const bool own = scene.blocks.empty() && scene.history.empty() &&
-                   !(scene.control == LoadControl::displacement && scene.bulk_stress != 0.0) &&
-                   std::abs(ElasticPair(scene.pad, scene.specimen, scene.plane).beta()) <= 1e-12;
+  const StandIns stand_ins = window_stand_ins(scene);
   const double centre = 0.5 * (w.x_min + w.x_max);
   double l = std::numeric_limits<double>::infinity(), r = -l;
-  for (const Scene& s : stand_ins) {
+  for (const Scene& s : stand_ins.scenes) {
     double half = 0.5 * (w.x_max - w.x_min);
     for (int attempt = 0;; ++attempt, half *= 2.0) {
       if (attempt == 6)
@@ -98,7 +104,7 @@ WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowCh
   if (!(l < r)) return w;
   const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
   return {std::min(w.x_min, c - 1.5 * hw), std::max(w.x_max, c + 1.5 * hw),
-          w.method + (own ? "+wear_asymptote" : "+wear_stand_in"), w.expected_half_width};
+          w.method + (stand_ins.itself ? "+wear_asymptote" : "+wear_stand_in"), w.expected_half_width};
 }
 
 // The wear run's stick zones are whole cells: those the first cycle's corrective contact loads, which it never wears

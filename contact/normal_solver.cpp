@@ -372,6 +372,7 @@ SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactSt
 SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactState& state,
                                  std::span<const double> shift) const {
   if (!preconditioned_) return iterate(g0, P, state, shift, false);
+  const std::vector<double> start = state.p;  // the caller's warm start (empty, or without load: cold)
   SolveSummary total = iterate(g0, P, state, shift, true);
   if (total.converged() || total.termination == Termination::no_admissible_cell) return total;
   const auto then = [&total](const SolveSummary& next) {
@@ -387,6 +388,18 @@ SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactSt
   if (plain.converged() || plain.termination != Termination::max_iterations ||
       plain.iterations >= options_.max_iterations)  // converged, failed otherwise, or used every iteration
     return total;
+  // A stick zone standing proud of worn zones in light contact, its edges a step of 0.1 µm that carries several GPa
+  // (a contact worn near the stick limit, 512 cells and up) defeats the runs above from a warm start the stepper
+  // gave: the preconditioned one reaches a residual of a few 1e-3 within a few iterations and then cycles between
+  // working sets, and the plain one, started where it stopped, cycles likewise. Plain CG from the caller's own start
+  // converges in a hundred iterations (regression_normal_solve_worn_punch_corners.cpp).
+  const bool warm = std::any_of(start.begin(), start.end(), [](double p) { return p > 0.0; });
+  if (warm && int(start.size()) == kernel_.grid().n) {
+    state.p = start;
+    const SolveSummary again = iterate(g0, P, state, shift, false, kPlainStallIterations);
+    then(again);
+    if (again.converged() || again.termination != Termination::max_iterations) return total;
+  }
   // A start far from the solution can defeat both: a stick zone a few cells wide standing proud of worn zones in
   // light contact, warm-started from a pressure spread over them. The preconditioned run moves the load onto the
   // stick zone too slowly and stalls, and the plain one re-enters the worn cells at −τ g, far past their share, and

@@ -60,6 +60,12 @@ constexpr int kStallIterations = 200;
 // A plain run from where a preconditioned one stalled: stalled when it has not halved its best residual for this
 // many (such runs converge in a few hundred iterations, 4096 cells included).
 constexpr int kPlainStallIterations = 5000;
+// The active-set fallback (ActiveSetSolve): sets tried, CG iterations for each set's equalities, and their gap error
+// as a share of the solver's tolerance times the gap scale (a tenth: the residual that accepts the result is then
+// the constrained CG's own, met at its first iteration).
+constexpr int kMaxActiveSets = 50;
+constexpr int kMaxActiveSetIterations = 2000;
+constexpr double kActiveSetGapError = 0.1;
 
 // u += c K e_j for the Toeplitz K with first column col.
 void add_column(std::span<const double> col, int j, double c, std::span<double> u) {
@@ -363,6 +369,154 @@ void ConstrainedCg::rescale(double tau, double load) {
   }
 }
 
+// The primal–dual active-set iteration (Hintermüller, Ito and Kunisch 2003, a semismooth Newton method), where the
+// constrained CG's working sets cycle (NormalSolver::solve), on K or K + diag(shift). Each step solves the contact
+// conditions as equalities on a set C, g_i = 0 on C and p_i = 0 off it with h Σ p = P, by preconditioned CG on C
+// with the mean gap removed (no projection, so nothing restarts it), then takes as the next set the cells of C whose
+// pressure stayed non-negative and the cells off C that overlap by more than the equality solve resolves,
+//     C ← {i ∈ C : p_i ≥ 0} ∪ {i ∉ C : g_i < −e},
+// e (`inner`, m) the bound on each equality solve's gap error. A worn contact near its limit has cells at zero gap
+// and zero pressure by the hundred, which a set that dropped them at p = 0 and took them back at an overlap of
+// round-off (1e-15 m) moved in and out for ever (either rule alone settles the captured case). A set that repeats
+// stops it (the iteration is not guaranteed to settle for a kernel that is not an M-matrix). Returns whether the set
+// settled; p then holds its pressure, which the caller accepts only by its own residual. `iterations` counts the CG
+// iterations.
+class ActiveSetSolve {
+ public:
+  // shift: empty, or the contact-implicit step's diag(shift) added to K (m/Pa per cell).
+  ActiveSetSolve(const HalfPlaneKernel& kernel, std::span<const double> g0, double P, std::span<const double> shift)
+      : kernel_(kernel), g0_(g0), shift_(shift), P_(P), n_(kernel.grid().n), h_(kernel.grid().h()),
+        k00_(kernel.column()[0]), u_(n_), g_(n_), r_(n_), z_(n_), t_(n_), v_(n_), e_(n_), set_(n_, 0) {}
+
+  bool run(std::vector<double>& p, double inner, int max_sets, int max_cg, int& iterations) {
+    p.resize(n_, 0.0);
+    for (int i = 0; i < n_; ++i) {
+      set_[i] = std::isfinite(g0_[i]) && p[i] > 0.0;
+      if (!set_[i]) p[i] = 0.0;
+    }
+    std::vector<std::vector<char>> seen;
+    for (int k = 0; k < max_sets; ++k) {
+      if (!equalities(p, inner, max_cg, iterations)) return false;
+      std::vector<char> next(n_, 0);
+      bool settled = true;
+      for (int i = 0; i < n_; ++i) {
+        if (!std::isfinite(g0_[i])) continue;
+        next[i] = set_[i] ? p[i] >= 0.0 : g_[i] < -inner;
+        settled = settled && next[i] == set_[i];
+      }
+      if (settled) return true;
+      if (std::find(seen.begin(), seen.end(), next) != seen.end()) return false;  // the sets cycle
+      seen.push_back(set_);
+      set_ = std::move(next);
+      for (int i = 0; i < n_; ++i)
+        if (!set_[i]) p[i] = 0.0;
+    }
+    return false;
+  }
+
+ private:
+  // y = (K + diag(shift)) x
+  void apply(std::span<const double> x, std::span<double> y) const {
+    kernel_.apply(x, y);
+    if (!shift_.empty())
+      for (int i = 0; i < n_; ++i) y[i] += shift_[i] * x[i];
+  }
+
+  // A cell the shift dominates (the Jacobi block of the preconditioner).
+  bool jacobi(int i) const { return !shift_.empty() && shift_[i] > k00_; }
+
+  // (K + diag(shift)) p on the cells, and the gap g = (K + diag(shift)) p + g0 − δ with δ its mean over the set.
+  void gap(std::span<const double> p) {
+    apply(p, u_);
+    double sum = 0.0;
+    int m = 0;
+    for (int i = 0; i < n_; ++i)
+      if (set_[i]) sum += u_[i] + g0_[i], ++m;
+    const double delta = sum / m;
+    for (int i = 0; i < n_; ++i) g_[i] = std::isfinite(g0_[i]) ? u_[i] + g0_[i] - delta : kInf;
+  }
+
+  // y = M⁻¹ x on the set, zero off it: the kernel's circulant inverse on the cells K dominates, Jacobi
+  // 1/(K_00 + shift) on those the shift does (ConstrainedCg::precondition's blocks).
+  void block_inverse(std::span<const double> x, std::span<double> y) const {
+    for (int i = 0; i < n_; ++i) y[i] = set_[i] && !jacobi(i) ? x[i] : 0.0;
+    kernel_.fft().apply_spectrum(kernel_.inverse_spectrum(), y, y);
+    for (int i = 0; i < n_; ++i) y[i] = !set_[i] ? 0.0 : jacobi(i) ? x[i] / (k00_ + shift_[i]) : y[i];
+  }
+
+  // z = M⁻¹ x made load-neutral on the set: its plain mean removed without a shift, and in M's metric with one,
+  // z − λ M⁻¹ 1 with λ = Σ M⁻¹x / Σ M⁻¹1 (as ConstrainedCg::precondition, which found the plain mean stall there).
+  void precondition(std::span<const double> x, std::span<double> z) {
+    block_inverse(x, z);
+    if (shift_.empty()) {
+      for (int i = 0; i < n_; ++i) e_[i] = set_[i] ? 1.0 : 0.0;
+    } else if (e_set_ != set_) {
+      std::vector<double> ones(n_, 1.0);
+      block_inverse(ones, e_);
+      e_set_ = set_;
+    }
+    double z_sum = 0.0, e_sum = 0.0;
+    for (int i = 0; i < n_; ++i)
+      if (set_[i]) z_sum += z[i], e_sum += e_[i];
+    for (int i = 0; i < n_; ++i) z[i] = set_[i] ? z[i] - z_sum / e_sum * e_[i] : 0.0;
+  }
+
+  // The equalities on the set: p on it with h Σ p = P and g = 0 there, by CG from the given p (rescaled to the load,
+  // or uniform where it carries none); g_ is then the gap everywhere.
+  bool equalities(std::vector<double>& p, double inner, int max_cg, int& iterations) {
+    double load = 0.0;
+    int m = 0;
+    for (int i = 0; i < n_; ++i)
+      if (set_[i]) load += h_ * p[i], ++m;
+    if (m == 0) return false;
+    for (int i = 0; i < n_; ++i) p[i] = set_[i] ? (load > 0.0 ? p[i] * P_ / load : P_ / (h_ * m)) : 0.0;
+    gap(p);
+    for (int i = 0; i < n_; ++i) r_[i] = set_[i] ? -g_[i] : 0.0;
+    precondition(r_, z_);
+    double rz = 0.0;
+    for (int i = 0; i < n_; ++i) rz += r_[i] * z_[i];
+    t_ = z_;
+    for (int it = 0;; ++it) {
+      double worst = 0.0;
+      for (int i = 0; i < n_; ++i)
+        if (set_[i]) worst = std::max(worst, std::abs(r_[i]));
+      if (worst <= inner) break;
+      if (it >= max_cg || !(rz > 0.0)) return false;
+      apply(t_, v_);
+      double v_mean = 0.0;
+      for (int i = 0; i < n_; ++i)
+        if (set_[i]) v_mean += v_[i];
+      v_mean /= m;
+      double tv = 0.0;
+      for (int i = 0; i < n_; ++i)
+        if (set_[i]) tv += t_[i] * (v_[i] - v_mean);
+      const double alpha = rz / tv;
+      for (int i = 0; i < n_; ++i)
+        if (set_[i]) p[i] += alpha * t_[i], r_[i] -= alpha * (v_[i] - v_mean);
+      precondition(r_, z_);
+      double rz_new = 0.0;
+      for (int i = 0; i < n_; ++i) rz_new += r_[i] * z_[i];
+      for (int i = 0; i < n_; ++i) t_[i] = set_[i] ? z_[i] + rz_new / rz * t_[i] : 0.0;
+      rz = rz_new;
+      ++iterations;
+      if (it % 50 == 49) {  // the recurrence drifts: the residual afresh from p
+        gap(p);
+        for (int i = 0; i < n_; ++i) r_[i] = set_[i] ? -g_[i] : 0.0;
+      }
+    }
+    gap(p);
+    return true;
+  }
+
+  const HalfPlaneKernel& kernel_;
+  const std::span<const double> g0_, shift_;
+  const double P_;
+  const int n_;
+  const double h_, k00_;
+  std::vector<double> u_, g_, r_, z_, t_, v_, e_;  // e_: M⁻¹ 1 on the set e_set_ (with a shift)
+  std::vector<char> set_, e_set_;
+};
+
 }  // namespace
 
 SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactState& state) const {
@@ -388,17 +542,31 @@ SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactSt
   if (plain.converged() || plain.termination != Termination::max_iterations ||
       plain.iterations >= options_.max_iterations)  // converged, failed otherwise, or used every iteration
     return total;
-  // A stick zone standing proud of worn zones in light contact, its edges a step of 0.1 µm that carries several GPa
-  // (a contact worn near the stick limit, 512 cells and up) defeats the runs above from a warm start the stepper
-  // gave: the preconditioned one reaches a residual of a few 1e-3 within a few iterations and then cycles between
-  // working sets, and the plain one, started where it stopped, cycles likewise. Plain CG from the caller's own start
-  // converges in a hundred iterations (regression_normal_solve_worn_punch_corners.cpp).
-  const bool warm = std::any_of(start.begin(), start.end(), [](double p) { return p > 0.0; });
-  if (warm && int(start.size()) == kernel_.grid().n) {
-    state.p = start;
-    const SolveSummary again = iterate(g0, P, state, shift, false, kPlainStallIterations);
-    then(again);
-    if (again.converged() || again.termination != Termination::max_iterations) return total;
+  // A stick zone standing proud of worn zones in light contact, its edges one-cell steps of 0.1 µm that carry
+  // several GPa like a flat punch's corners (a contact worn near the stick limit, 512 cells and up), defeats both
+  // runs above from any start: the preconditioned one reaches a residual of a few 1e-3 within a few iterations, and
+  // then the working set takes in the worn zones at once (the proportioning test's sum of their small overlaps),
+  // sheds them a few cells an iteration, and takes them in again; the plain one cycles likewise. The active-set
+  // iteration has no such restarts and settles in a few sets (regression_normal_solve_worn_punch_corners.cpp): from
+  // the caller's start, or where the runs stopped when it gave none. Its pressure is accepted only if the
+  // constrained CG, started there, stops on its own residual. The same with a shift, where the plain run stalled
+  // before the iteration limit (the contact-implicit step's solves mostly reach it first, and the stepper retries a
+  // smaller step: wear/implicit_stepper.hpp).
+  {
+    const bool warm = std::any_of(start.begin(), start.end(), [](double p) { return p > 0.0; });
+    std::vector<double> p = warm && int(start.size()) == kernel_.grid().n ? start : state.p;
+    double g_min = kInf, g_max = -kInf;
+    for (double g : g0)
+      if (std::isfinite(g)) g_min = std::min(g_min, g), g_max = std::max(g_max, g);
+    const double inner = kActiveSetGapError * options_.tolerance * std::max(g_max - g_min, kernel_.A() * P);
+    int iterations = 0;
+    if (ActiveSetSolve(kernel_, g0, P, shift).run(p, inner, kMaxActiveSets, kMaxActiveSetIterations, iterations)) {
+      state.p = std::move(p);
+      SolveSummary checked = iterate(g0, P, state, shift, true);
+      checked.iterations += iterations;
+      then(checked);
+      if (checked.converged()) return total;
+    }
   }
   // A start far from the solution can defeat both: a stick zone a few cells wide standing proud of worn zones in
   // light contact, warm-started from a pressure spread over them. The preconditioned run moves the load onto the

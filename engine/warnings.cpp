@@ -182,6 +182,42 @@ void singular_maxima(const Scene& scene, const RunResult& r, std::vector<Warning
                              list, names.size() == 1 ? "s" : "", names.size() == 1 ? "it grows" : "they grow")});
 }
 
+// A worn profile that zigzags from cell to cell: three consecutive second differences of alternating sign, each
+// above kZigzagShare of the deepest wear (a step, however sharp, bends once: one change of sign). Found beside the
+// stick zone of contacts worn near the stick limit (dissimilar bodies at Q/fP = 0.99, 512 to 2048 cells): cells there
+// switch between sticking and slipping from step to step, and pits a cell wide open between cells that do not wear.
+// The worst record is reported: its cycles, how many cells and where.
+void worn_zigzag(const RunResult& r, std::vector<Warning>& out) {
+  const Grid& grid = r.normal.grid;
+  int worst = 0;
+  double at = 0.0, left = 0.0, right = 0.0;
+  for (const WearRecord& rec : r.wear->records) {
+    const std::vector<double>& w = rec.w;
+    if (int(w.size()) != grid.n) continue;
+    const double w_max = *std::max_element(w.begin(), w.end());
+    if (!(w_max > 0.0)) continue;
+    const auto d2 = [&w](int i) { return w[i - 1] - 2.0 * w[i] + w[i + 1]; };
+    const auto large = [&](double d) { return std::abs(d) > kZigzagShare * w_max; };
+    int count = 0;
+    double first = 0.0, last = 0.0;
+    for (int i = 1; i + 3 < grid.n; ++i) {
+      const double a = d2(i), b = d2(i + 1), c = d2(i + 2);
+      if (!(large(a) && large(b) && large(c) && a * b < 0.0 && b * c < 0.0)) continue;
+      if (count++ == 0) first = grid.x(i);
+      last = grid.x(i + 2);
+    }
+    if (count > worst) worst = count, at = rec.cycles, left = first, right = last;
+  }
+  if (worst == 0) return;
+  out.push_back({"worn_profile_zigzag",
+                 fmt::format("the worn depth zigzags from cell to cell ({} places, between x = {:.4g} and {:.4g} m, "
+                             "at {:.4g} cycles): cells there switch between sticking and slipping from step to step "
+                             "and pits a cell wide open between cells that do not wear, so the depth, the pressure and "
+                             "the stick zones there are the grid's, not a resolved scar; more grid.cells do not remove "
+                             "it (docs/METHODS.md, \"Known to fail\")",
+                             worst, left, right, at)});
+}
+
 }  // namespace
 
 std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result) {
@@ -196,6 +232,7 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
   if (result.wear && !result.wear->records.empty()) {
     wear_overshoot(scene, result, out);
     if (result.cycle) shared_scar(scene, result, out);
+    worn_zigzag(result, out);
   }
   if (!result.stress_maps.empty() || result.life) singular_maxima(scene, result, out);
   return out;

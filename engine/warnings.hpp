@@ -26,11 +26,14 @@ inline constexpr double kLongRunSeconds = 3600.0;
 // boundaries, WearAsymptote::cells_worn_area) before a warning: what one zone aligned to the cells leaves on the
 // default grid is below 0.1 % (hertz_wear), so 0.5 % flags a grid whose other zones' ends cost several times that.
 inline constexpr double kWearAgreement = 5e-3;
+// A worn profile zigzags where three consecutive second differences alternate in sign, each above this share of the
+// deepest wear (warnings.cpp, worn_zigzag).
+inline constexpr double kZigzagShare = 0.01;
 
 // What the results of a completed run cannot be trusted for: under-resolved contact and slip zones, a closed form
 // missed by more than kClosedFormTolerance (Hertz, the punches, the Mindlin stick zone), a crack longer than the
 // window or outside it, a worn area past the directly computed asymptote by more than the grid's share of the
-// difference (kWearAgreement) or past the limit of its own grid.
+// difference (kWearAgreement) or past the limit of its own grid, a worn profile that zigzags from cell to cell.
 std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result);
 
 }  // namespace fretwear

@@ -1,15 +1,15 @@
-// Regression: a similar Hertz wear run on the incremental route at Q/fP = 0.97 (f = 0.5, 1024 cells, 10^5 cycles)
-// stopped with exit 3 at 4942 cycles: "the normal solve on the worn profile stopped (max_iterations) with residual
-// 0.00537". Its stick zone, 68 cells wide, stood 0.11 µm proud of the worn slip zones with a one-cell step at each
-// edge, which carries some 7 GPa (a flat punch's corners), while the worn zones touch at tens of MPa. From the
-// stepper's warm start the preconditioned run reached 2e-3 in four iterations and then cycled between working sets,
-// the plain run started where it stopped cycled likewise, and so did both from the cold start (25 485 iterations in
-// all). Plain constrained CG from the caller's own warm start converges, and NormalSolver::solve now tries it before
-// the cold start. The data is the captured solve: the worn gap g0 + w and the warm start p per cell.
+// Regression: wear runs near the stick limit on fine grids stopped with exit 3, "the normal solve on the worn
+// profile stopped (max_iterations)": a similar Hertz run on the incremental route at Q/fP = 0.97 (f = 0.5, 1024
+// cells) at 4942 cycles, and a steel-on-aluminium one at f = 0.9, Q/fP = 0.99 (1024 cells) after 6.3e6 cycles. Each
+// worn contact is a stick zone standing 0.1–0.5 µm proud of the worn slip zones, its edges one-cell steps that carry
+// several GPa like a flat punch's corners, beside hundreds of worn cells in light contact or at zero gap and zero
+// pressure. The constrained CG's working set took those cells in at once and shed them a few an iteration, over and
+// over, preconditioned or plain, from the warm and from the cold start (some 25 000 iterations in all). NormalSolver
+// now tries the active-set iteration, whose pressure the constrained CG then accepts at its first iteration. The
+// data are the captured solves: the worn gap g0 + w and the stepper's warm start p per cell.
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -25,14 +25,14 @@ using namespace fretwear;
 namespace {
 
 constexpr int kCells = 1024;
-constexpr double kXMin = -0.00027986628047502979, kXMax = 0.00028316529360440261, kP = 1e5;
+constexpr double kP = 1e5;
 
 struct Captured {
   std::vector<double> gap, p;
 };
 
-Captured read_captured() {
-  std::ifstream in(FRETWEAR_SOURCE_DIR "/tests/regression/data/worn_punch_corners.csv");
+Captured read_captured(const std::string& name) {
+  std::ifstream in(FRETWEAR_SOURCE_DIR "/tests/regression/data/" + name);
   REQUIRE(in);
   Captured c;
   std::string line;
@@ -50,12 +50,10 @@ Captured read_captured() {
   return c;
 }
 
-}  // namespace
-
-TEST_CASE("the normal solve of a contact worn to a punch with sharp corners converges from the stepper's start") {
-  const Captured c = read_captured();
-  const Grid grid{kXMin, kXMax, kCells};
-  const ElasticPair pair({200e9, 0.3}, {200e9, 0.3}, PlaneState::strain);
+// The captured solve converges from the stepper's start and from the cold start, to the same pressure as another
+// path reaches; the peak sits on a corner of the proud stick zone, [first, last], whose edges are steps of more than
+// 0.1 µm.
+void check(const Captured& c, const Grid& grid, const ElasticPair& pair, int first, int last) {
   const HalfPlaneKernel kernel(grid, pair.A());
   NormalSolverOptions worn;  // the wear stage's cycle solves (engine/wear_contacts.hpp)
   worn.proportioning = kWearProportioning;
@@ -66,22 +64,47 @@ TEST_CASE("the normal solve of a contact worn to a punch with sharp corners conv
   const SolveSummary s = solver.solve(c.gap, kP, warm);
   CAPTURE(s.brief());
   REQUIRE(s.converged());
+  ContactState cold;
+  const SolveSummary sc = solver.solve(c.gap, kP, cold);
+  CAPTURE(sc.brief());
+  REQUIRE(sc.converged());
 
-  // The same solution by another path: plain constrained CG alone from the same start.
-  NormalSolverOptions plain = worn;
-  plain.preconditioner = NormalSolverOptions::Preconditioner::none;
+  // Another path: the constrained CG with a reluctant proportioning (Γ = 3) converges on these two on its own, in
+  // its first run (its fallbacks, the active set among them, would take thousands of iterations), here to a
+  // hundredth of the tolerance: at the tolerance itself its pressure is off by 1.2e-6 of the peak at the corners,
+  // where the active set's answer (residual 2e-10) and this one agree to 3e-8.
+  NormalSolverOptions reluctant = worn;
+  reluctant.proportioning = 3.0;
+  reluctant.tolerance = 1e-2 * worn.tolerance;
   ContactState other;
   other.p = c.p;
-  const SolveSummary so = NormalSolver(kernel, plain).solve(c.gap, kP, other);
+  const SolveSummary so = NormalSolver(kernel, reluctant).solve(c.gap, kP, other);
   CAPTURE(so.brief());
   REQUIRE(so.converged());
+  CHECK(so.iterations < 500);
   const double p_max = *std::max_element(warm.p.begin(), warm.p.end());
-  CHECK(test::max_abs_diff(warm.p, other.p) <= 1e-6 * p_max);
+  CHECK(test::max_abs_diff(warm.p, other.p) <= 1e-7 * p_max);
+  CHECK(test::max_abs_diff(cold.p, other.p) <= 1e-7 * p_max);
 
-  // The punch's corners carry the peak: the first and the last cell of the stick zone standing proud.
   const auto peak = std::max_element(warm.p.begin(), warm.p.end()) - warm.p.begin();
-  const int step_left = 475, step_right = 542;  // where the gap drops by 0.11 µm from one cell to the next
-  CHECK((peak == step_left || peak == step_right));
-  CHECK(c.gap[step_left - 1] - c.gap[step_left] > 1e-7);
-  CHECK(c.gap[step_right + 1] - c.gap[step_right] > 1e-7);
+  CHECK((peak == first || peak == last));
+  CHECK(c.gap[first - 1] - c.gap[first] > 1e-7);
+  CHECK(c.gap[last + 1] - c.gap[last] > 1e-7);
+}
+
+}  // namespace
+
+TEST_CASE("the normal solve of a contact worn to a punch with sharp corners converges (similar, incremental route)") {
+  const Grid grid{-0.00027986628047502979, 0.00028316529360440261, kCells};
+  check(read_captured("worn_punch_corners.csv"), grid, ElasticPair({200e9, 0.3}, {200e9, 0.3}, PlaneState::strain),
+        475, 542);
+}
+
+TEST_CASE("the normal solve of a contact worn to a punch with sharp corners converges (dissimilar)") {
+  // Here the worn zones hold cells at zero gap and zero pressure whose overlap is round-off (1e-15 m). An active set
+  // that dropped such a cell at p = 0 and took it back at g < 0 cycled between two sets after eight; it keeps a cell
+  // at p = 0 and takes one in only past the equality solves' gap error (either rule alone settles this case).
+  const Grid grid{-0.00042288660020773727, 0.00042288660020773749, kCells};
+  check(read_captured("worn_punch_corners_dissimilar.csv"), grid,
+        ElasticPair({200e9, 0.3}, {71e9, 0.33}, PlaneState::strain), 494, 529);
 }

@@ -184,9 +184,9 @@ void singular_maxima(const Scene& scene, const RunResult& r, std::vector<Warning
 
 // A worn profile that zigzags from cell to cell: three consecutive second differences of alternating sign, each
 // above kZigzagShare of the deepest wear (a step, however sharp, bends once: one change of sign). Found beside the
-// stick zone of contacts worn near the stick limit (dissimilar bodies at Q/fP = 0.99, 512 to 2048 cells): cells there
-// switch between sticking and slipping from step to step, and pits a cell wide open between cells that do not wear.
-// The worst record is reported: its cycles, how many cells and where.
+// stick zone of contacts worn near the stick limit (dissimilar bodies at Q/fP = 0.97 to 0.99, 256 to 1024 cells):
+// cells there switch between sticking and slipping from step to step, and pits a cell wide open between cells that
+// do not wear. The worst record is reported: its cycles, how many places and where.
 void worn_zigzag(const RunResult& r, std::vector<Warning>& out) {
   const Grid& grid = r.normal.grid;
   int worst = 0;

@@ -23,6 +23,7 @@
 #include "engine/warnings.hpp"
 #include "engine/wear_stage.hpp"
 #include "scenes.hpp"
+#include "support.hpp"
 
 using namespace fretwear;
 
@@ -37,7 +38,7 @@ TEST_CASE("dissimilar wear at Q/fP = 0.99 runs 10^7 cycles on 512 cells and warn
   const WearRecord& last = wear.records.back();
   CHECK(last.cycles == 1e7);
   // The 1024-cell run's worn area (header), to the spread of the grids and paths, 2 %.
-  CHECK(last.worn_area == doctest::Approx(8.8393e-10).epsilon(3e-2));
+  CHECK(last.worn_area == test::rel(8.8393e-10, 3e-2));
 
   // The zigzag: cells in the stick zone's outer cells alternate between worn and not, by more than 1 % of the deepest
   // wear (five cells in from each end at 512 cells), and nowhere beyond four cells from it; the warning names it.

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -23,6 +26,31 @@ inline double max_abs_diff(const std::vector<double>& a, const std::vector<doubl
   double d = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
   return d;
+}
+
+// A normal solve captured from a run (tests/regression/data/*.csv): per cell the gap g0 + w (m) and the warm start p
+// (Pa), one "gap,p" row a cell after '#' comments and a header; a test failure unless it has `cells` rows.
+struct CapturedSolve {
+  std::vector<double> gap, p;
+};
+
+inline CapturedSolve read_captured_solve(const std::string& name, int cells) {
+  std::ifstream in(FRETWEAR_SOURCE_DIR "/tests/regression/data/" + name);
+  REQUIRE(in);
+  CapturedSolve c;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 'g') continue;  // comments and the header
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream row(line);
+    double g = 0.0, p = 0.0;
+    row >> g >> p;
+    REQUIRE(row);
+    c.gap.push_back(g);
+    c.p.push_back(p);
+  }
+  REQUIRE(int(c.gap.size()) == cells);
+  return c;
 }
 
 }  // namespace fretwear::test

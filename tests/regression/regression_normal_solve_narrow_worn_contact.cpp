@@ -10,9 +10,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
-#include <string>
 #include <vector>
 
 #include "contact/elastic_pair.hpp"
@@ -27,33 +24,10 @@ namespace {
 constexpr int kCells = 256;
 constexpr double kXMin = -0.00042288660020773727, kXMax = 0.00042288660020773749, kP = 1e5;
 
-struct Captured {
-  std::vector<double> gap, p;
-};
-
-Captured read_captured() {
-  std::ifstream in(FRETWEAR_SOURCE_DIR "/tests/regression/data/narrow_worn_contact.csv");
-  REQUIRE(in);
-  Captured c;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 'g') continue;  // comments and the header
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    double g = 0.0, p = 0.0;
-    row >> g >> p;
-    REQUIRE(row);
-    c.gap.push_back(g);
-    c.p.push_back(p);
-  }
-  REQUIRE(int(c.gap.size()) == kCells);
-  return c;
-}
-
 }  // namespace
 
 TEST_CASE("the normal solve of a contact worn down to a narrow punch converges from a warm start far from it") {
-  const Captured c = read_captured();
+  const test::CapturedSolve c = test::read_captured_solve("narrow_worn_contact.csv", kCells);
   const Grid grid{kXMin, kXMax, kCells};
   const ElasticPair pair({200e9, 0.3}, {71e9, 0.33}, PlaneState::strain);
   const HalfPlaneKernel kernel(grid, pair.A());

@@ -10,9 +10,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
-#include <string>
 #include <vector>
 
 #include "contact/elastic_pair.hpp"
@@ -27,33 +24,10 @@ namespace {
 constexpr int kCells = 1024;
 constexpr double kP = 1e5;
 
-struct Captured {
-  std::vector<double> gap, p;
-};
-
-Captured read_captured(const std::string& name) {
-  std::ifstream in(FRETWEAR_SOURCE_DIR "/tests/regression/data/" + name);
-  REQUIRE(in);
-  Captured c;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 'g') continue;  // comments and the header
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    double g = 0.0, p = 0.0;
-    row >> g >> p;
-    REQUIRE(row);
-    c.gap.push_back(g);
-    c.p.push_back(p);
-  }
-  REQUIRE(int(c.gap.size()) == kCells);
-  return c;
-}
-
 // The captured solve converges from the stepper's start and from the cold start, to the same pressure as another
 // path reaches; the peak sits on a corner of the proud stick zone, [first, last], whose edges are steps of more than
 // 0.1 µm.
-void check(const Captured& c, const Grid& grid, const ElasticPair& pair, int first, int last) {
+void check(const test::CapturedSolve& c, const Grid& grid, const ElasticPair& pair, int first, int last) {
   const HalfPlaneKernel kernel(grid, pair.A());
   NormalSolverOptions worn;  // the wear stage's cycle solves (engine/wear_contacts.hpp)
   worn.proportioning = kWearProportioning;
@@ -96,8 +70,8 @@ void check(const Captured& c, const Grid& grid, const ElasticPair& pair, int fir
 
 TEST_CASE("the normal solve of a contact worn to a punch with sharp corners converges (similar, incremental route)") {
   const Grid grid{-0.00027986628047502979, 0.00028316529360440261, kCells};
-  check(read_captured("worn_punch_corners.csv"), grid, ElasticPair({200e9, 0.3}, {200e9, 0.3}, PlaneState::strain),
-        475, 542);
+  check(test::read_captured_solve("worn_punch_corners.csv", kCells), grid,
+        ElasticPair({200e9, 0.3}, {200e9, 0.3}, PlaneState::strain), 475, 542);
 }
 
 TEST_CASE("the normal solve of a contact worn to a punch with sharp corners converges (dissimilar)") {
@@ -105,6 +79,6 @@ TEST_CASE("the normal solve of a contact worn to a punch with sharp corners conv
   // that dropped such a cell at p = 0 and took it back at g < 0 cycled between two sets after eight; it keeps a cell
   // at p = 0 and takes one in only past the equality solves' gap error (either rule alone settles this case).
   const Grid grid{-0.00042288660020773727, 0.00042288660020773749, kCells};
-  check(read_captured("worn_punch_corners_dissimilar.csv"), grid,
+  check(test::read_captured_solve("worn_punch_corners_dissimilar.csv", kCells), grid,
         ElasticPair({200e9, 0.3}, {71e9, 0.33}, PlaneState::strain), 494, 529);
 }

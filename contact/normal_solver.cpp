@@ -74,6 +74,41 @@ void add_column(std::span<const double> col, int j, double c, std::span<double> 
   for (int i = j; i < n; ++i) u[i] += c * col[i - j];
 }
 
+// The preconditioner on the cells of `set` (ConstrainedCg's working set, ActiveSetSolve's set): z = M⁻¹ x, M the
+// kernel's circulant on the cells K dominates and Jacobi K_00 + shift_i on those a shift dominates (shift_i > K_00),
+// made load-neutral on the set, z − λ e with λ = Σ z / Σ e over it: e = M⁻¹ 1 with a shift (recomputed only when
+// `set` is not `e_set`), e = 1 without one (the plain mean). z is zero off the set, and x is read only on it.
+void block_precondition(const HalfPlaneKernel& kernel, std::span<const double> shift, std::span<const char> set,
+                        std::span<const double> x, std::span<double> z, std::vector<double>& e,
+                        std::vector<char>& e_set) {
+  const int n = int(set.size());
+  const double k00 = kernel.column()[0];
+  const bool shifted = !shift.empty();
+  const auto& inverse = kernel.inverse_spectrum();
+  for (int i = 0; i < n; ++i) z[i] = set[i] && !(shifted && shift[i] > k00) ? x[i] : 0.0;
+  kernel.fft().apply_spectrum(inverse, z, z);
+  if (shifted)
+    for (int i = 0; i < n; ++i)
+      if (set[i] && shift[i] > k00) z[i] = x[i] / (k00 + shift[i]);
+  if (shifted) {
+    // M⁻¹ 1 depends on the set alone: recomputed only when the set changed.
+    if (!std::equal(set.begin(), set.end(), e_set.begin(), e_set.end())) {
+      for (int i = 0; i < n; ++i) e[i] = set[i] && !(shift[i] > k00) ? 1.0 : 0.0;
+      kernel.fft().apply_spectrum(inverse, e, e);
+      for (int i = 0; i < n; ++i)
+        if (set[i] && shift[i] > k00) e[i] = 1.0 / (k00 + shift[i]);
+      e_set.assign(set.begin(), set.end());
+    }
+  } else {
+    for (int i = 0; i < n; ++i) e[i] = set[i] ? 1.0 : 0.0;
+  }
+  double z_sum = 0.0, e_sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    if (set[i]) z_sum += z[i], e_sum += e[i];
+  const double lambda = z_sum / e_sum;
+  for (int i = 0; i < n; ++i) z[i] = set[i] ? z[i] - lambda * e[i] : 0.0;
+}
+
 // One run of the header's constrained CG (Polonsky and Keer 1999) on the operator K + diag(shift): the pressure p
 // (state.p) with its displacement u = (K + diag(shift)) p carried from iterate to iterate, the gap g = g0 + u − δ
 // (state.gap, δ its mean over the contact set) and the conjugate direction t on the working set.
@@ -276,33 +311,10 @@ void ConstrainedCg::conjugate_direction() {
 // block, and only the projection in the preconditioner's metric keeps CG consistent: z = M⁻¹ g − λ M⁻¹ 1 with
 // λ = Σ M⁻¹g / Σ M⁻¹1 (a plain mean stalled every wear-sized shift).
 double ConstrainedCg::precondition() {
-  const auto& inverse = kernel_.inverse_spectrum();
-  for (int i = 0; i < n_; ++i) z_[i] = work_[i] && !(shifted_ && shift_[i] > k00_) ? g_[i] : 0.0;
-  kernel_.fft().apply_spectrum(inverse, z_, z_);
-  if (shifted_)
-    for (int i = 0; i < n_; ++i)
-      if (work_[i] && shift_[i] > k00_) z_[i] = g_[i] / (k00_ + shift_[i]);
-  if (shifted_) {
-    // M⁻¹ 1 depends on the working set alone: recomputed only when the set changed.
-    if (work_ != e_work_) {
-      for (int i = 0; i < n_; ++i) e_[i] = work_[i] && !(shift_[i] > k00_) ? 1.0 : 0.0;
-      kernel_.fft().apply_spectrum(inverse, e_, e_);
-      for (int i = 0; i < n_; ++i)
-        if (work_[i] && shift_[i] > k00_) e_[i] = 1.0 / (k00_ + shift_[i]);
-      e_work_ = work_;
-    }
-  } else {
-    for (int i = 0; i < n_; ++i) e_[i] = work_[i] ? 1.0 : 0.0;
-  }
-  double z_sum = 0.0, e_sum = 0.0;
-  for (int i = 0; i < n_; ++i)
-    if (work_[i]) z_sum += z_[i], e_sum += e_[i];
-  const double lambda = z_sum / e_sum;
+  block_precondition(kernel_, shift_, work_, g_, z_, e_, e_work_);
   double rz = 0.0;
-  for (int i = 0; i < n_; ++i) {
-    z_[i] = work_[i] ? z_[i] - lambda * e_[i] : 0.0;
+  for (int i = 0; i < n_; ++i)
     if (work_[i]) rz += g_[i] * z_[i];
-  }
   return rz;
 }
 
@@ -386,7 +398,7 @@ class ActiveSetSolve {
   // shift: empty, or the contact-implicit step's diag(shift) added to K (m/Pa per cell).
   ActiveSetSolve(const HalfPlaneKernel& kernel, std::span<const double> g0, double P, std::span<const double> shift)
       : kernel_(kernel), g0_(g0), shift_(shift), P_(P), n_(kernel.grid().n), h_(kernel.grid().h()),
-        k00_(kernel.column()[0]), u_(n_), g_(n_), r_(n_), z_(n_), t_(n_), v_(n_), e_(n_), set_(n_, 0) {}
+        u_(n_), g_(n_), r_(n_), z_(n_), t_(n_), v_(n_), e_(n_), set_(n_, 0) {}
 
   bool run(std::vector<double>& p, double inner, int max_sets, int max_cg, int& iterations) {
     p.resize(n_, 0.0);
@@ -422,9 +434,6 @@ class ActiveSetSolve {
       for (int i = 0; i < n_; ++i) y[i] += shift_[i] * x[i];
   }
 
-  // A cell the shift dominates (the Jacobi block of the preconditioner).
-  bool jacobi(int i) const { return !shift_.empty() && shift_[i] > k00_; }
-
   // (K + diag(shift)) p on the cells, and the gap g = (K + diag(shift)) p + g0 − δ with δ its mean over the set.
   void gap(std::span<const double> p) {
     apply(p, u_);
@@ -436,29 +445,9 @@ class ActiveSetSolve {
     for (int i = 0; i < n_; ++i) g_[i] = std::isfinite(g0_[i]) ? u_[i] + g0_[i] - delta : kInf;
   }
 
-  // y = M⁻¹ x on the set, zero off it: the kernel's circulant inverse on the cells K dominates, Jacobi
-  // 1/(K_00 + shift) on those the shift does (ConstrainedCg::precondition's blocks).
-  void block_inverse(std::span<const double> x, std::span<double> y) const {
-    for (int i = 0; i < n_; ++i) y[i] = set_[i] && !jacobi(i) ? x[i] : 0.0;
-    kernel_.fft().apply_spectrum(kernel_.inverse_spectrum(), y, y);
-    for (int i = 0; i < n_; ++i) y[i] = !set_[i] ? 0.0 : jacobi(i) ? x[i] / (k00_ + shift_[i]) : y[i];
-  }
-
-  // z = M⁻¹ x made load-neutral on the set: its plain mean removed without a shift, and in M's metric with one,
-  // z − λ M⁻¹ 1 with λ = Σ M⁻¹x / Σ M⁻¹1 (as ConstrainedCg::precondition, which found the plain mean stall there).
+  // z = M⁻¹ x made load-neutral on the set (block_precondition).
   void precondition(std::span<const double> x, std::span<double> z) {
-    block_inverse(x, z);
-    if (shift_.empty()) {
-      for (int i = 0; i < n_; ++i) e_[i] = set_[i] ? 1.0 : 0.0;
-    } else if (e_set_ != set_) {
-      std::vector<double> ones(n_, 1.0);
-      block_inverse(ones, e_);
-      e_set_ = set_;
-    }
-    double z_sum = 0.0, e_sum = 0.0;
-    for (int i = 0; i < n_; ++i)
-      if (set_[i]) z_sum += z[i], e_sum += e_[i];
-    for (int i = 0; i < n_; ++i) z[i] = set_[i] ? z[i] - z_sum / e_sum * e_[i] : 0.0;
+    block_precondition(kernel_, shift_, set_, x, z, e_, e_set_);
   }
 
   // The equalities on the set: p on it with h Σ p = P and g = 0 there, by CG from the given p (rescaled to the load,
@@ -512,8 +501,8 @@ class ActiveSetSolve {
   const std::span<const double> g0_, shift_;
   const double P_;
   const int n_;
-  const double h_, k00_;
-  std::vector<double> u_, g_, r_, z_, t_, v_, e_;  // e_: M⁻¹ 1 on the set e_set_ (with a shift)
+  const double h_;
+  std::vector<double> u_, g_, r_, z_, t_, v_, e_;  // e_: block_precondition's e, for the set e_set_
   std::vector<char> set_, e_set_;
 };
 

@@ -761,14 +761,17 @@ IncrementalSlipSolver::AmplitudeRun::AmplitudeRun(const IncrementalSlipSolver& s
   mirror_ = mirrors();
 }
 
-// The equations are unchanged by x → −x with q → −q and Q → −Q when the gap is even in x and no bulk strain (odd
-// in Q, even in x) is applied; the grid's cells then pair as i ↔ n − 1 − i. A worn gap is even only as far as the
-// solves that wore it (their pressure is even to their tolerance, about 1e-6 of its peak): the gap is taken as even
-// where its odd part is within kMirrorTolerance = 1e-6 of its largest value, and the cycle on it is then that of
-// the even gap to within about as much, below the asymmetry the mirror neglects anyway (the header).
+// The equations are unchanged by x → −x with q → −q and Q → −Q (δ → −δ under displacement control) when the gap is
+// even in x, no bulk strain (odd in Q, even in x) is applied and the datum's reference points lie on x = 0; the
+// grid's cells then pair as i ↔ n − 1 − i. A worn gap is even only as far as the solves that wore it (their
+// pressure is even to their tolerance, about 1e-6 of its peak): the gap is taken as even where its odd part is within
+// kMirrorTolerance = 1e-6 of its largest value, and the cycle on it is then that of the even gap to within about as
+// much, below the asymmetry the mirror neglects anyway (the header).
 bool IncrementalSlipSolver::AmplitudeRun::mirrors() const {
-  if (!options_.mirror_half_cycle || !coupled_ || displacement_ || bulk_strain_ != 0.0) return false;
-  if (std::abs(grid_.x_min + grid_.x_max) > 1e-12 * (grid_.x_max - grid_.x_min)) return false;
+  if (!options_.mirror_half_cycle || !coupled_ || bulk_strain_ != 0.0) return false;
+  const double width = grid_.x_max - grid_.x_min;
+  if (std::abs(grid_.x_min + grid_.x_max) > 1e-12 * width) return false;
+  if (displacement_ && std::abs(datum_->x_c()) > 1e-12 * width) return false;
   const std::span<const double> g = coupling_->g0;
   double largest = 0.0, odd = 0.0;
   for (int i = 0; i < n_; ++i) {
@@ -814,7 +817,10 @@ void IncrementalSlipSolver::AmplitudeRun::cycle(int c) {
     }
     if (4 * j == 3 * m) r.q_reloaded = state_.q;
   }
-  if (half) mirror_reloading(r, loop_start, std::move(top), std::move(p_top));
+  if (half) {
+    mirror_reloading(r, loop_start, std::move(top), std::move(p_top));
+    sliding *= 2.0;  // the reloading half slides as the unloading half did
+  }
   if (coupled_) result_.p_top = p_;
   r.q_top = state_.q;
   close_cycle(grid_, w_max_, w_min_, hi_, hi_unloaded, r);

@@ -101,10 +101,13 @@
 // half of a sweep solves for that load), and the pressure at the history's top and bottom is reported as under a
 // constant P (for β = 0 too, where it is the normal solution at the P of those points), with the bulk strain there.
 //
-// Half a cycle, mirrored (mirror_half_cycle; β ≠ 0 under force control without bulk strain, solve() only). The
-// equations above are unchanged by x → −x with q → −q, Q → −Q (S is odd, K even) when the gap is even, and the
-// cells pair as i ↔ n − 1 − i on a window centred at x = 0. A steady cycle whose bottom is its top so mirrored then
-// reloads as it unloaded, mirrored, and dissipates e(x) + e(−x) per cycle, e the unloading half's; its slip travelled
+// Half a cycle, mirrored (mirror_half_cycle; β ≠ 0 without bulk strain, solve() only). The equations above are
+// unchanged by x → −x with q → −q, Q → −Q (S is odd, K even) when the gap is even, and the cells pair as
+// i ↔ n − 1 − i on a window centred at x = 0; under displacement control δ → −δ too, when the datum's reference
+// points lie on x = 0 (D, the shear's share and the pressure's alike, is then odd under the mirror, and the even
+// pressure under P alone adds nothing to it), and the reloading half slides as the unloading half did (the sliding
+// amplitude from twice the unloading's sliding). A steady cycle whose bottom is its top so mirrored then reloads as
+// it unloaded, mirrored, and dissipates e(x) + e(−x) per cycle, e the unloading half's; its slip travelled
 // likewise, and its slip range from the unloading's extremes (w over the reloading is W(x) − w_u(−x, t), W the slip at
 // the bottom). So the last cycle marches its unloading half only: 20 of the 40 increments. The marched cycle is
 // that but for the slip the first loading leaves locked in at the stick zone's edges, which no later cycle undoes:
@@ -150,8 +153,8 @@ struct IncrementalSlipOptions {
   int max_coupling_sweeps = 100;  // sweeps per increment before giving up; ≥ 1
   // β ≠ 0 only: start each increment's sweeps from the last increment's change scaled to this one (see above).
   bool predict_increments = true;
-  // β ≠ 0 under force control without bulk strain, on a mirror-symmetric contact (see above): the last cycle's
-  // reloading half taken as the mirror image of its unloading half, solve() only.
+  // β ≠ 0 without bulk strain, on a mirror-symmetric contact (see above; under displacement control with the datum
+  // on x = 0): the last cycle's reloading half taken as the mirror image of its unloading half, solve() only.
   bool mirror_half_cycle = false;
   NormalSolverOptions normal;     // for the normal solves of the coupled increments
 

@@ -157,7 +157,7 @@ IncrementalSlipOptions incremental_options(const Scene& scene, double beta, cons
   IncrementalSlipOptions o;
   o.increments_per_cycle = scene.tangential->increments;
   if (beta != 0.0) o.cycles = 2;  // as the cycle stage: the first cycle after the first loading is not yet steady
-  if (beta != 0.0 && load.history.empty() && !(load.delta > 0.0)) {
+  if (beta != 0.0 && load.history.empty()) {
     o.settling_increments = kSettlingIncrements;
     o.mirror_half_cycle = true;  // on an even worn gap (header)
   }

@@ -157,14 +157,15 @@ class AnalogyContactResponse : public WearContact {
 //    less than the energy's, falling to zero with p_ref. Such cells wear as the uncoupled pressure under P says;
 //    the limit the run tends to is then that of the pressure under P (PERFORMANCE.md, "Dissimilar bodies").
 //
-// The coupled cycle (β ≠ 0 under force control and a constant P) settles in kSettlingIncrements = 4 per cycle: the
-// first loading in one increment and the first cycle in four, then the scene's steady cycle (45 increments of about
-// five block Gauss–Seidel sweeps at 40 per cycle, against 90 marching all at 40): only the steady cycle is reported,
-// and the state at its start hardly remembers the march to it (contact/incremental_slip.hpp,
+// The coupled cycle (β ≠ 0 under a constant P, force or displacement control) settles in kSettlingIncrements = 4
+// per cycle: the first loading in one increment and the first cycle in four, then the scene's steady cycle (45
+// increments of about five block Gauss–Seidel sweeps at 40 per cycle, against 90 marching all at 40): only the
+// steady cycle is reported, and the state at its start hardly remembers the march to it (contact/incremental_slip.hpp,
 // settling_increments, and tests/verification/test_coupled_increments.cpp: 1e-8 of the energy, 1e-6 p0). On an even
 // worn gap (Hertz, any symmetric profile, worn by symmetric cycles) it marches only the unloading half of the steady
 // cycle and takes the reloading half as its mirror image (mirror_half_cycle, contact/incremental_slip.hpp): 25
-// increments instead of 45, the energy within 5e-7 of the full march's.
+// increments instead of 45, the energy within 5e-7 of the full march's (under displacement control, where each
+// increment is a δ search, 2.3e-7: tests/verification/test_coupled_mirror.cpp).
 //
 // The lagged coupling (β ≠ 0 under force control and a constant P, Coupling::lagged, the default). The analogy's
 // uncoupled cycle on the same worn profile (AnalogyContactResponse: a normal and a corrective solve) costs a few

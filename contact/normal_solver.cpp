@@ -400,7 +400,9 @@ class ActiveSetSolve {
       : kernel_(kernel), g0_(g0), shift_(shift), P_(P), n_(kernel.grid().n), h_(kernel.grid().h()),
         u_(n_), g_(n_), r_(n_), z_(n_), t_(n_), v_(n_), e_(n_), set_(n_, 0) {}
 
-  bool run(std::vector<double>& p, double inner, int max_sets, int max_cg, int& iterations) {
+  // max_cg bounds each set's CG iterations, max_total all of them (iterations counts them).
+  bool run(std::vector<double>& p, double inner, int max_sets, int max_cg, int max_total, int& iterations) {
+    max_total_ = max_total;
     p.resize(n_, 0.0);
     for (int i = 0; i < n_; ++i) {
       set_[i] = std::isfinite(g0_[i]) && p[i] > 0.0;
@@ -470,7 +472,7 @@ class ActiveSetSolve {
       for (int i = 0; i < n_; ++i)
         if (set_[i]) worst = std::max(worst, std::abs(r_[i]));
       if (worst <= inner) break;
-      if (it >= max_cg || !(rz > 0.0)) return false;
+      if (it >= max_cg || iterations >= max_total_ || !(rz > 0.0)) return false;
       apply(t_, v_);
       double v_mean = 0.0;
       for (int i = 0; i < n_; ++i)
@@ -504,6 +506,7 @@ class ActiveSetSolve {
   const double h_;
   std::vector<double> u_, g_, r_, z_, t_, v_, e_;  // e_: block_precondition's e, for the set e_set_
   std::vector<char> set_, e_set_;
+  int max_total_ = 0;
 };
 
 }  // namespace
@@ -524,23 +527,22 @@ SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactSt
     total = next;
     total.iterations = iterations, total.seconds = seconds;
   };
-  // The preconditioned iteration can stall where long stretches sit at zero gap and zero pressure (a worn
-  // profile near its asymptote); plain constrained CG, warm-started from where it stopped, does not.
-  const SolveSummary plain = iterate(g0, P, state, shift, false, kPlainStallIterations);
-  then(plain);
-  if (plain.converged() || plain.termination != Termination::max_iterations ||
-      plain.iterations >= options_.max_iterations)  // converged, failed otherwise, or used every iteration
-    return total;
+  // After a stalled preconditioned run: the active set, then plain constrained CG, then both from the cold start.
+  //
   // A stick zone standing proud of worn zones in light contact, its edges one-cell steps of 0.1 µm that carry
-  // several GPa like a flat punch's corners (a contact worn near the stick limit, 512 cells and up), defeats both
-  // runs above from any start: the preconditioned one reaches a residual of a few 1e-3 within a few iterations, and
-  // then the working set takes in the worn zones at once (the proportioning test's sum of their small overlaps),
-  // sheds them a few cells an iteration, and takes them in again; the plain one cycles likewise. The active-set
-  // iteration has no such restarts and settles in a few sets (regression_normal_solve_worn_punch_corners.cpp): from
-  // the caller's start, or where the runs stopped when it gave none. Its pressure is accepted only if the
-  // constrained CG, started there, stops on its own residual. The same with a shift, where the plain run stalled
-  // before the iteration limit (the contact-implicit step's solves mostly reach it first, and the stepper retries a
-  // smaller step: wear/implicit_stepper.hpp).
+  // several GPa like a flat punch's corners (a contact worn near the stick limit, 512 cells and up), defeats the
+  // constrained CG from any start: the preconditioned run reaches a residual of a few 1e-3 within a few iterations,
+  // and then the working set takes in the worn zones at once (the proportioning test's sum of their small overlaps),
+  // sheds them a few cells an iteration, and takes them in again; the plain run cycles likewise, to its stall test
+  // or its iteration limit. The active-set iteration has no such restarts and settles in a few sets
+  // (regression_normal_solve_worn_punch_corners.cpp): from the caller's start, or where the preconditioned run
+  // stopped when it gave none. Its pressure is accepted only if the constrained CG, started there, stops on its own
+  // residual. It goes first: where it settles it costs tens of CG iterations, where the plain run spends the
+  // thousands of its stall test first (a set that repeats, or 50 sets, stops it where it does not settle). With a
+  // shift too: the contact-implicit step's solves, whose plain run mostly reaches their iteration limit and hands
+  // the step back to the stepper for a smaller one (wear/implicit_stepper.hpp), which on such contacts shrank the
+  // jump without end (docs/PERFORMANCE.md, "Wear near the stick limit").
+  const std::vector<double> stalled = state.p;
   {
     const bool warm = std::any_of(start.begin(), start.end(), [](double p) { return p > 0.0; });
     std::vector<double> p = warm && int(start.size()) == kernel_.grid().n ? start : state.p;
@@ -549,14 +551,26 @@ SolveSummary NormalSolver::solve(std::span<const double> g0, double P, ContactSt
       if (std::isfinite(g)) g_min = std::min(g_min, g), g_max = std::max(g_max, g);
     const double inner = kActiveSetGapError * options_.tolerance * std::max(g_max - g_min, kernel_.A() * P);
     int iterations = 0;
-    if (ActiveSetSolve(kernel_, g0, P, shift).run(p, inner, kMaxActiveSets, kMaxActiveSetIterations, iterations)) {
+    if (ActiveSetSolve(kernel_, g0, P, shift)
+            .run(p, inner, kMaxActiveSets, std::min(kMaxActiveSetIterations, options_.max_iterations),
+                 options_.max_iterations, iterations)) {
       state.p = std::move(p);
       SolveSummary checked = iterate(g0, P, state, shift, true);
       checked.iterations += iterations;
       then(checked);
       if (checked.converged()) return total;
+    } else {
+      total.iterations += iterations;
     }
   }
+  // The preconditioned iteration can stall where long stretches sit at zero gap and zero pressure (a worn
+  // profile near its asymptote); plain constrained CG, warm-started from where it stopped, does not.
+  state.p = stalled;
+  const SolveSummary plain = iterate(g0, P, state, shift, false, kPlainStallIterations);
+  then(plain);
+  if (plain.converged() || plain.termination != Termination::max_iterations ||
+      plain.iterations >= options_.max_iterations)  // converged, failed otherwise, or used every iteration
+    return total;
   // A start far from the solution can defeat both: a stick zone a few cells wide standing proud of worn zones in
   // light contact, warm-started from a pressure spread over them. The preconditioned run moves the load onto the
   // stick zone too slowly and stalls, and the plain one re-enters the worn cells at −τ g, far past their share, and

@@ -32,6 +32,7 @@ inline double max_abs_diff(const std::vector<double>& a, const std::vector<doubl
 // (Pa), one "gap,p" row a cell after '#' comments and a header; a test failure unless it has `cells` rows.
 struct CapturedSolve {
   std::vector<double> gap, p;
+  std::vector<double> shift;  // a contact-implicit solve's diag(shift) (m/Pa per cell): a third column; else empty
 };
 
 inline CapturedSolve read_captured_solve(const std::string& name, int cells) {
@@ -43,13 +44,15 @@ inline CapturedSolve read_captured_solve(const std::string& name, int cells) {
     if (line.empty() || line[0] == '#' || line[0] == 'g') continue;  // comments and the header
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream row(line);
-    double g = 0.0, p = 0.0;
+    double g = 0.0, p = 0.0, d = 0.0;
     row >> g >> p;
     REQUIRE(row);
     c.gap.push_back(g);
     c.p.push_back(p);
+    if (row >> d) c.shift.push_back(d);
   }
   REQUIRE(int(c.gap.size()) == cells);
+  REQUIRE((c.shift.empty() || int(c.shift.size()) == cells));
   return c;
 }
 

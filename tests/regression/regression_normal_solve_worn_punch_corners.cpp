@@ -6,7 +6,8 @@
 // pressure. The constrained CG's working set took those cells in at once and shed them a few an iteration, over and
 // over, preconditioned or plain, from the warm and from the cold start (some 25 000 iterations in all). NormalSolver
 // now tries the active-set iteration, whose pressure the constrained CG then accepts at its first iteration. The
-// data are the captured solves: the worn gap g0 + w and the stepper's warm start p per cell.
+// data are the captured solves: the worn gap g0 + w and the stepper's warm start p per cell (and a contact-implicit
+// solve's shift).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -81,4 +82,30 @@ TEST_CASE("the normal solve of a contact worn to a punch with sharp corners conv
   const Grid grid{-0.00042288660020773727, 0.00042288660020773749, kCells};
   check(test::read_captured_solve("worn_punch_corners_dissimilar.csv", kCells), grid,
         ElasticPair({200e9, 0.3}, {71e9, 0.33}, PlaneState::strain), 494, 529);
+}
+
+TEST_CASE("a contact-implicit solve on a contact worn to a punch converges within its iteration limit (dissimilar)") {
+  // The same run at 2048 cells stopped with exit 3: its contact-implicit solves (the operator K + diag(ΔN c s), at
+  // most max(2000, cells) iterations: engine/wear_contacts.hpp) spent their limit in the plain run after the stalled
+  // preconditioned one, and the stepper retried ever smaller jumps, down to 0.39 cycles. The active set goes before
+  // the plain run, and settles this captured solve (1024 cells) in 281 iterations in all; with the plain run first,
+  // from where the preconditioned run stalled, the solve stops at the limit (2201 iterations, residual 0.097).
+  const Grid grid{-0.00042288660020773727, 0.00042288660020773749, kCells};
+  const test::CapturedSolve c = test::read_captured_solve("worn_punch_corners_implicit.csv", kCells);
+  REQUIRE(int(c.shift.size()) == kCells);
+  const HalfPlaneKernel kernel(grid, ElasticPair({200e9, 0.3}, {71e9, 0.33}, PlaneState::strain).A());
+  NormalSolverOptions implicit;  // WearContact::implicit_options(1024)
+  implicit.proportioning = kWearProportioning;
+  implicit.max_iterations = 2000;
+
+  ContactState warm;
+  warm.p = c.p;
+  const SolveSummary s = NormalSolver(kernel, implicit).solve(c.gap, kP, warm, c.shift);
+  CAPTURE(s.brief());
+  REQUIRE(s.converged());
+  CHECK(s.iterations > 200);  // the preconditioned run stalled: this is a fallback's solve
+  CHECK(s.iterations < 500);
+  double load = 0.0;
+  for (double pi : warm.p) load += grid.h() * pi;
+  CHECK(load == test::rel(kP, 1e-12));
 }

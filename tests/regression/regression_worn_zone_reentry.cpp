@@ -50,12 +50,15 @@ TEST_CASE("a contact-implicit solve with hundreds of degenerate worn cells conve
   const Captured c = read_captured(m.grid.n);
   REQUIRE(c.P == s.P);
 
-  // Without proportioning (Polonsky and Keer's re-entry) this solve does not converge in a thousand iterations.
+  // Without proportioning (Polonsky and Keer's re-entry) the constrained CG stalls on this solve (200 iterations
+  // without halving its best residual), and plain constrained CG does not converge on it in a thousand iterations:
+  // the solve converges only through the active-set fallback after that stall (291 iterations in all, measured).
   NormalSolverOptions plain;
   plain.max_iterations = 1000;
   ContactState stalled;
   stalled.p = c.p;
-  CHECK_FALSE(NormalSolver(*m.kernel, plain).solve(c.gap, c.P, stalled, c.shift).converged());
+  const SolveSummary hard = NormalSolver(*m.kernel, plain).solve(c.gap, c.P, stalled, c.shift);
+  CHECK(hard.iterations > 200);
 
   // With the wear stage's options it converges in tens of iterations (65 when this test was written).
   NormalSolverOptions worn;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include <boost/math/tools/toms748_solve.hpp>
 #include <fmt/format.h>
 
 #include "common/error.hpp"
@@ -63,11 +64,60 @@ void WearContact::restore_counts(const json& j) {
   implicit_iterations = j.at("implicit_iterations").get<long>();
 }
 
+namespace {
+
+// The search for a displacement-controlled cycle's Q stops at a relative bracket of 2⁻⁴⁰ (1e-12), far below the
+// grid's error in Q, or after this many evaluations (toms748 takes about a dozen).
+constexpr int kTopBits = 40;
+constexpr std::uintmax_t kTopEvaluations = 100;
+
+}  // namespace
+
 AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model, const CyclicLoad& load)
     : WearContact(scene, model) {
   tilt_ = load.bulk_strain / load.f;
+  Q_ = load.Q_max;
   corrective_load_ = load.P - load.Q_max / load.f;
   if (!(corrective_load_ > 0.0)) throw UnsupportedError(sliding_under_force_control(load.Q_max, load.f * load.P));
+}
+
+AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& model, const CyclicLoad& load,
+                                               const ReferenceDatum& datum)
+    : WearContact(scene, model), datum_(&datum), delta_(load.delta) {
+  if (!(load.delta > 0.0) || load.bulk_strain != 0.0 || !load.history.empty())
+    throw std::logic_error("AnalogyContactResponse: a displacement amplitude without bulk strain or history");
+}
+
+void AnalogyContactResponse::solve_top_displacement() {
+  const int n = model_.grid.n;
+  const double f = *scene_.friction, P = scene_.P;
+  std::vector<double> q(n);
+  // δ_top(Q) − δ with δ_top(Q) = f (δ_P − δ*(Q)) + D(q_top) (contact/displacement_limit.hpp), the corrective solve
+  // warm-started from the last one.
+  const auto miss = [&](double Q) {
+    solve_worn(P - Q / f, corrective_, "corrective");
+    for (int i = 0; i < n; ++i) q[i] = f * (normal_.p[i] - corrective_.p[i]);
+    return f * (normal_.approach - corrective_.approach) + datum_->relative_displacement(q, {}) - delta_;
+  };
+  // At Q = fP the corrective contact shrinks onto the lowest point of the worn gap and q = f p: the stick limit.
+  double g_min = std::numeric_limits<double>::infinity();
+  for (double g : gap_) g_min = std::min(g_min, g);
+  for (int i = 0; i < n; ++i) q[i] = f * normal_.p[i];
+  const double at_limit = f * (normal_.approach - g_min) + datum_->relative_displacement(q, {}) - delta_;
+  if (!(at_limit > 0.0))
+    throw UnsupportedError(fmt::format("effects.wear: the worn contact slides under delta = {:.6g} m (its stick "
+                                       "limit is {:.6g} m), which the analogy route cannot follow",
+                                       delta_, at_limit + delta_));
+  std::uintmax_t evaluations = kTopEvaluations;
+  const auto [a, b] = boost::math::tools::toms748_solve(
+      [&](double Q) { return Q <= 0.0 ? -delta_ : miss(Q); }, 0.0, f * P, -delta_, at_limit,
+      boost::math::tools::eps_tolerance<double>(kTopBits), evaluations);
+  if (evaluations >= kTopEvaluations)
+    throw ConvergenceError(fmt::format("wear: the search for the Q whose cycle reaches delta = {:.6g} m took {} "
+                                       "evaluations without closing its bracket [{:.6g}, {:.6g}] N/m",
+                                       delta_, evaluations, a, b));
+  Q_ = 0.5 * (a + b);
+  corrective_load_ = P - Q_ / f;
 }
 
 void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
@@ -76,6 +126,7 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   set_gap(w);
   if (int(out.p.size()) == n) normal_.p = out.p;
   solve_worn(scene_.P, normal_, "normal");
+  if (datum_) solve_top_displacement();
   for (int i = 0; i < n; ++i) gap_[i] -= tilt_ * grid.x(i);
   solve_worn(corrective_load_, corrective_, "corrective");
   const double f = *scene_.friction;
@@ -185,10 +236,31 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
   for (const HistoryPoint& pt : load_.history) P_ref_ = std::max(P_ref_, pt.P);
   if (coupling == Coupling::lagged && beta_ != 0.0 && load_.history.empty() && !(load_.delta > 0.0))
     analogy_ = std::make_unique<AnalogyContactResponse>(scene, model, load_);
+  // Similar bodies under displacement control: the analogy's cycle at the Q that reaches δ (header).
+  if (beta_ == 0.0 && load_.delta > 0.0 && load_.history.empty() && load_.bulk_strain == 0.0 &&
+      scene.tangential->route == TangentialRoute::automatic && cycle.result.regime == Regime::partial_slip)
+    analogy_ = std::make_unique<AnalogyContactResponse>(scene, model, load_, datum_);
   tolerance_ = scene.wear ? scene.wear->tolerance : WearEffect{}.tolerance;
 }
 
 void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
+  if (analogy_ && beta_ == 0.0) {  // displacement control, similar bodies: the analogy's response is the cycle's
+    const long solves = analogy_->cycle_solves, iterations = analogy_->cycle_iterations;
+    try {
+      analogy_->respond(w, out);
+    } catch (const UnsupportedError& e) {  // it slides or slips backwards: every response marched from now
+      analogy_.reset();
+      analogy_gave_up_ = e.what();
+    }
+    if (analogy_) {
+      cycle_solves += analogy_->cycle_solves - solves;
+      cycle_iterations += analogy_->cycle_iterations - iterations;
+      q_top_ = analogy_->shear_top();
+      Q_top_ = analogy_->Q_top();
+      ++analogy_responses_;
+      return;
+    }
+  }
   if (analogy_) {
     const long solves = analogy_->cycle_solves, iterations = analogy_->cycle_iterations;
     try {
@@ -315,6 +387,7 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   ++coupled_responses_;
   if (r.mirrored) ++mirrored_responses_;
   cycle_ = r.cycles.back();
+  Q_top_ = cycle_.Q_peak;
   if (cycle_.slip_travelled.empty())  // Q ≥ f P at some point of the cycle under force control: the bodies slide
     throw UnsupportedError("effects.wear: " + cycle_.message);
   q_top_ = cycle_.q_top;
@@ -375,6 +448,9 @@ json IncrementalContactResponse::save() const {
   j["coupled_responses"] = coupled_responses_;
   j["mirrored_responses"] = mirrored_responses_;
   j["lagged_responses"] = lagged_responses_;
+  j["analogy_responses"] = analogy_responses_;
+  j["analogy_gave_up"] = analogy_gave_up_;
+  j["Q_top"] = Q_top_;
   if (analogy_)
     j["lagged"] = {{"analogy", analogy_->save()},
                    {"uncoupled", response_json(uncoupled_)},
@@ -397,6 +473,9 @@ void IncrementalContactResponse::restore(const json& j) {
   coupled_responses_ = j.value("coupled_responses", 0L);
   mirrored_responses_ = j.value("mirrored_responses", 0L);
   lagged_responses_ = j.value("lagged_responses", 0L);
+  analogy_responses_ = j.value("analogy_responses", 0L);
+  analogy_gave_up_ = j.value("analogy_gave_up", std::string());
+  Q_top_ = j.value("Q_top", Q_top_);
   if (!j.contains("lagged")) {
     analogy_.reset();  // written by a run whose every response was coupled
     return;

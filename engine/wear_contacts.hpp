@@ -1,12 +1,14 @@
 // The contact as the wear stage sees it: wear::ContactResponse (wear/contact_response.hpp) answered on top of
-// contact/, by the analogy route on the worn profile (similar bodies, force control) or by the incremental route
-// (displacement control, or when the scene asks for it), with what the stage needs besides: the shear at the top of
+// contact/, by the analogy route on the worn profile (similar bodies: under force control, and under displacement
+// control in partial slip at the Q that reaches δ) or by the incremental route (dissimilar bodies, gross slip, load
+// histories, or when the scene asks for it), with what the stage needs besides: the shear at the top of
 // the cycle for records, the solves' warm starts for checkpoints, and the solves' counts.
 #pragma once
 
 #include <algorithm>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -101,9 +103,17 @@ class AnalogyContactResponse : public WearContact {
  public:
   // load: the cyclic load (CyclePlan::load, or cyclic_load()).
   AnalogyContactResponse(const Scene& scene, const Model& model, const CyclicLoad& load);
+  // Under displacement control (load.delta > 0, no bulk strain, no history): each response first finds the Q whose
+  // steady cycle takes the datum's reference points to ±load.delta on the worn profile, δ_top(Q) = δ with
+  // δ_top(Q) = f (δ_P − δ*(Q)) + D(q_top) (contact/displacement_limit.hpp, the datum fixed in the bodies as they wear),
+  // by toms748 over corrective solves; then the cycle at that Q. Throws UnsupportedError from respond() where the
+  // worn contact's stick limit falls to δ (the bodies slide) and, as under force control, where it slips backwards.
+  AnalogyContactResponse(const Scene& scene, const Model& model, const CyclicLoad& load, const ReferenceDatum& datum);
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return q_top_; }
-  double Q_top() const override { return scene_.Q_max(); }
+  // The tangential load at the top of the cycle: the scene's under force control, the last response's under
+  // displacement control.
+  double Q_top() const override { return Q_; }
   // The last corrective pressure (for records).
   const std::vector<double>& corrective_pressure() const { return corrective_.p; }
   // The stick zones of the last cycle, one per run of the corrective contact (several where the contact has
@@ -113,7 +123,12 @@ class AnalogyContactResponse : public WearContact {
   void restore(const nlohmann::json& j) override;
 
  private:
-  double tilt_ = 0.0, corrective_load_ = 0.0;
+  // Under displacement control: Q_ and corrective_load_ from δ_top(Q) = delta_ on the worn gap (gap_).
+  void solve_top_displacement();
+
+  double tilt_ = 0.0, corrective_load_ = 0.0, Q_ = 0.0;
+  const ReferenceDatum* datum_ = nullptr;  // displacement control: the cycle stage's datum
+  double delta_ = 0.0;
   ContactState normal_, corrective_;
   std::vector<double> q_top_;
   std::vector<Zone> stick_zones_;
@@ -197,6 +212,12 @@ class AnalogyContactResponse : public WearContact {
 // bodies") has the run against every response coupled at 256 to 1024 cells;
 // tests/verification/test_wear_lagged_coupling.cpp holds a run to it. Where the analogy cannot follow the worn contact
 // (it slips backwards at its leading edge) every later response is coupled.
+//
+// Similar bodies under displacement control in partial slip (route "auto", no bulk strain): every response is the
+// analogy's at the Q whose cycle reaches δ (AnalogyContactResponse's displacement mode, on this datum), which for
+// β = 0 is the marched cycle's to the solves' tolerances (tests/verification/test_wear_displacement_analogy.cpp: Q
+// 4e-9, the slip 2.3e-7 of its largest) at a sixth of its cost or less; where the worn contact slides or slips
+// backwards, every later response is marched, and analogy_gave_up() says why.
 class IncrementalContactResponse : public WearContact {
  public:
   // How a β ≠ 0 response under force control and a constant P takes in the coupling (above); other loads and
@@ -211,7 +232,7 @@ class IncrementalContactResponse : public WearContact {
   // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return q_top_; }
-  double Q_top() const override { return cycle_.Q_peak; }
+  double Q_top() const override { return Q_top_; }
   // The steady cycle of the last coupled response (the refresh, under Coupling::lagged).
   const CycleResult& last_cycle() const { return cycle_; }
   // Responses that solved the coupled cycle, those of them that marched half of it and mirrored the rest
@@ -219,6 +240,10 @@ class IncrementalContactResponse : public WearContact {
   long coupled_responses() const { return coupled_responses_; }
   long mirrored_responses() const { return mirrored_responses_; }
   long lagged_responses() const { return lagged_responses_; }
+  // Similar bodies under displacement control: responses answered by the analogy (header), and why it stopped
+  // answering where it did (empty while it answers every one).
+  long analogy_responses() const { return analogy_responses_; }
+  const std::string& analogy_gave_up() const { return analogy_gave_up_; }
   // Dundurs β of the pair: the cycle is coupled where it is not 0.
   double beta() const { return beta_; }
   nlohmann::json save() const override;
@@ -246,7 +271,9 @@ class IncrementalContactResponse : public WearContact {
   ContactState reference_;  // under P_ref_ when it is not load.P (a history): p_ref
   CycleResult cycle_;
   std::vector<double> q_top_;  // the shear at the top of the cycle of the last response (Pa)
-  long coupled_responses_ = 0, mirrored_responses_ = 0, lagged_responses_ = 0;
+  long coupled_responses_ = 0, mirrored_responses_ = 0, lagged_responses_ = 0, analogy_responses_ = 0;
+  double Q_top_ = 0.0;            // the tangential load at the top of the last response's cycle (N/m)
+  std::string analogy_gave_up_;
   // The lagged coupling (null analogy_: every response coupled).
   std::unique_ptr<AnalogyContactResponse> analogy_;
   wear::CycleResponse uncoupled_;      // the analogy's response on the current w (its p warm-starts the next)

@@ -970,6 +970,12 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
     WearRun run(scene, model, control, *contact, stage);
     drive_by(run, effect.stepper, first.rate_max);
   }
+  if (incremental && incremental->analogy_responses() > 0) {
+    stage.route = "analogy (displacement control: each cycle's Q solved for load.delta)";
+    if (!incremental->analogy_gave_up().empty())
+      stage.route += fmt::format(", then incremental after {} responses: {}", incremental->analogy_responses(),
+                                 incremental->analogy_gave_up());
+  }
   if (incremental && incremental->beta() != 0.0) {
     const long coupled = incremental->coupled_responses(), lagged = incremental->lagged_responses();
     stage.coupling = WearStage::Coupling{coupled + lagged, coupled, incremental->mirrored_responses(), lagged};

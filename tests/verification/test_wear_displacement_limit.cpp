@@ -235,15 +235,16 @@ std::vector<Zone> as_zones(const std::vector<Interval>& intervals) {
 // A wear run under displacement control approaches the limit. Q falls from Q0 (the first record) toward δ/C(Z0) at
 // every record; at the end the contact is the complete contact over the stick zones of the last record, fully stuck:
 // Q_max = δ/C(Z_final), and the worn area is that complete contact's over them on the worn profile. On 256 cells
-// (h = 0.013 a) the stick cells of the end are the first cycle's, and after 3e4 cycles the run is there to 1.3e-10
-// in Q (the incremental route's δ per increment: kSameCycle) and 3.6e-6 in worn area (below the stepper's
-// tolerance), at the limit over those cells, `cells_worn_area`, 99.69 % of the asymptote. On 1024 cells
-// (h = 0.0034 a) the stick zone grows by a cell on each side as Q falls (the worn neighbours join it; 3.6e-7 m, two
-// cells, on 2048), and the run settles below the asymptote: 96.6 % (96.5 % on 2048), kStickGrowth = 5 %. There the
-// cells at the grown zone's ends still creep: Q is 4.1e-5 above δ/C(Z_final) and the worn area 8.7e-4 below its limit
-// after 3e4 cycles, 3.6e-5 and 7.7e-4 after 1e5 (kCreepQ, kCreepW).
+// (h = 0.013 a) the stick cells of the end are the first cycle's, and after 3e4 cycles the run is there to 8e-9 in Q
+// (kSameCycle) and 2.9e-6 in worn area (below the stepper's tolerance), at the limit over those cells,
+// `cells_worn_area`, 99.69 % of the asymptote. On 1024 cells (h = 0.0034 a) the stick zone grows by a cell on each
+// side as Q falls (the worn neighbours join it; 3.6e-7 m, two cells, on 2048), and the run settles below the
+// asymptote, 96.6 % (96.5 % on 2048; kStickGrowth = 5 %), at the grown zone's limit: 1.1e-8 in Q and 5.6e-7 in worn
+// area. The run's cycles are the analogy's at the Q that reaches δ (engine/wear_contacts.hpp); marched instead, the
+// grown zone's end cells crept toward that limit, 4.1e-5 in Q and 8.7e-4 in worn area short of it after 3e4 cycles
+// (the marched cycle gives a worn cell without pressure no slip on touching, docs/METHODS.md).
 TEST_CASE("a wear run under displacement control ends fully stuck over its stick zone under Q = delta/C") {
-  constexpr double kSameCycle = 1e-6, kStickGrowth = 0.05, kCreepQ = 1e-4, kCreepW = 2e-3;
+  constexpr double kSameCycle = 1e-6, kStickGrowth = 0.05;
   for (const int cells : {256, 1024}) {
     CAPTURE(cells);
     Scene s = test::hertz_wear(kP, 0.0, 3e4, cells);
@@ -282,15 +283,11 @@ TEST_CASE("a wear run under displacement control ends fully stuck over its stick
                         last.worn_area / W_frozen - 1.0, growth, growth / m.grid.h()));
     CHECK(last.fraction <= 1.0);
     CHECK(last.fraction > 1.0 - kStickGrowth);
-    if (cells == 256) {
-      CHECK(last.Q_max * C_final == test::rel(*s.delta, kSameCycle));
-      CHECK(last.worn_area == test::rel(W_frozen, s.wear->tolerance));
+    CHECK(last.Q_max * C_final == test::rel(*s.delta, kSameCycle));
+    CHECK(last.worn_area == test::rel(W_frozen, s.wear->tolerance));
+    if (cells == 256)
       CHECK(last.worn_area == test::rel(a.cells_worn_area, s.wear->tolerance));
-    } else {
+    else
       CHECK(growth > 0.5 * m.grid.h());
-      CHECK(last.Q_max * C_final == test::rel(*s.delta, kCreepQ));
-      CHECK(last.worn_area <= W_frozen);
-      CHECK(last.worn_area == test::rel(W_frozen, kCreepW));
-    }
   }
 }

@@ -236,6 +236,10 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
   for (const HistoryPoint& pt : load_.history) P_ref_ = std::max(P_ref_, pt.P);
   if (coupling == Coupling::lagged && beta_ != 0.0 && load_.history.empty() && !(load_.delta > 0.0))
     analogy_ = std::make_unique<AnalogyContactResponse>(scene, model, load_);
+  // Under displacement control the lag's uncoupled cycle is the analogy's at the Q that reaches δ (header).
+  if (coupling == Coupling::lagged && beta_ != 0.0 && load_.history.empty() && load_.delta > 0.0 &&
+      load_.bulk_strain == 0.0 && cycle.result.regime == Regime::partial_slip)
+    analogy_ = std::make_unique<AnalogyContactResponse>(scene, model, load_, datum_);
   // Similar bodies under displacement control: the analogy's cycle at the Q that reaches δ (header).
   if (beta_ == 0.0 && load_.delta > 0.0 && load_.history.empty() && load_.bulk_strain == 0.0 &&
       scene.tangential->route == TangentialRoute::automatic && cycle.result.regime == Regime::partial_slip)
@@ -310,8 +314,21 @@ double IncrementalContactResponse::drift() const {
 bool IncrementalContactResponse::same_stick_zones() const {
   const wear::CycleResponse& a = uncoupled_;
   const wear::CycleResponse& b = uncoupled_ref_;
-  return a.has_stick == b.has_stick && a.stick_left == b.stick_left && a.stick_right == b.stick_right &&
-         a.stick_zones == b.stick_zones;
+  if (!(load_.delta > 0.0))
+    return a.has_stick == b.has_stick && a.stick_left == b.stick_left && a.stick_right == b.stick_right &&
+           a.stick_zones == b.stick_zones;
+  // Under displacement control Q moves at every response, and the edges with it within their cells: the same
+  // zones are the same cells.
+  const Grid& grid = model_.grid;
+  const auto cell = [&grid](double x) { return std::floor((x - grid.x_min) / grid.h()); };
+  const auto same = [&cell](const Interval& u, const Interval& v) {
+    return cell(u.first) == cell(v.first) && cell(u.second) == cell(v.second);
+  };
+  if (a.has_stick != b.has_stick || a.stick_zones.size() != b.stick_zones.size()) return false;
+  if (a.has_stick && !same({a.stick_left, a.stick_right}, {b.stick_left, b.stick_right})) return false;
+  for (std::size_t k = 0; k < a.stick_zones.size(); ++k)
+    if (!same(a.stick_zones[k], b.stick_zones[k])) return false;
+  return true;
 }
 
 void IncrementalContactResponse::respond_lagged(wear::CycleResponse& out) {
@@ -328,6 +345,7 @@ void IncrementalContactResponse::respond_lagged(wear::CycleResponse& out) {
   const std::vector<double>& q_u = analogy_->shear_top();
   q_top_.resize(n);
   for (int i = 0; i < n; ++i) q_top_[i] = q_u[i] + shear_correction_[i];
+  Q_top_ = analogy_->Q_top() + Q_correction_;
   ++lagged_responses_;
 }
 
@@ -358,6 +376,7 @@ void IncrementalContactResponse::refresh(std::span<const double> w, const wear::
     slip_correction_[i] = out.p[i] > 0.0 ? out.s[i] - uncoupled_.s[i] : 0.0;
     shear_correction_[i] = q_top_[i] - q_u[i];
   }
+  Q_correction_ = Q_top_ - analogy_->Q_top();  // 0 under force control; the coupling's share of Q under δ
   uncoupled_ref_ = uncoupled_;
   coupled_ref_ = out;
   area_ref_ = worn_area(w);
@@ -459,7 +478,8 @@ json IncrementalContactResponse::save() const {
                    {"slip_correction", slip_correction_},
                    {"shear_correction", shear_correction_},
                    {"gain", gain_},
-                   {"area_ref", area_ref_}};
+                   {"area_ref", area_ref_},
+                   {"Q_correction", Q_correction_}};
   return j;
 }
 
@@ -490,6 +510,7 @@ void IncrementalContactResponse::restore(const json& j) {
   l.at("shear_correction").get_to(shear_correction_);
   gain_ = l.at("gain").get<double>();
   area_ref_ = l.at("area_ref").get<double>();
+  Q_correction_ = l.value("Q_correction", 0.0);
 }
 
 std::unique_ptr<WearContact> make_wear_contact(const Scene& scene, const Model& model, const CycleStage& cycle) {

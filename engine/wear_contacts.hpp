@@ -182,13 +182,14 @@ class AnalogyContactResponse : public WearContact {
 // increments instead of 45, the energy within 5e-7 of the full march's (under displacement control, where each
 // increment is a δ search, 2.3e-7: tests/verification/test_coupled_mirror.cpp).
 //
-// The lagged coupling (β ≠ 0 under force control and a constant P, Coupling::lagged, the default). The analogy's
-// uncoupled cycle on the same worn profile (AnalogyContactResponse: a normal and a corrective solve) costs a few
-// hundredths of a coupled cycle. So a response may be
+// The lagged coupling (β ≠ 0 under a constant P, Coupling::lagged, the default; under displacement control in partial
+// slip without bulk strain). The analogy's uncoupled cycle on the same worn profile (AnalogyContactResponse: a normal
+// and a corrective solve; under displacement control a dozen corrective solves more, for the Q that reaches δ)
+// costs a few hundredths of a coupled cycle. So a response may be
 //     s(w) = max(0, s_u(w) + Δs(w_r))   on the contact of p(w) (zero off it),   Δs(w_r) = s_c(w_r) − s_u(w_r),
 // s_u the uncoupled slip, s_c the coupled one (the energy's equivalent above) and w_r the profile of the last
-// coupled response (the refresh); the shear at the top of the cycle is corrected alike, and the stick zones are the
-// refresh's. Its error is measured, as the stepper measures the worn profile, in the wear it adds: with the rates
+// coupled response (the refresh); the shear at the top of the cycle is corrected alike, and so is Q under
+// displacement control (Q_u(w) + Q_c(w_r) − Q_u(w_r)); the stick zones are the refresh's. Its error is measured, as the stepper measures the worn profile, in the wear it adds: with the rates
 // r = p s, the relative error of the lagged rate of the worn area (h c Σ_i p_i s_i)
 //     ε = Σ_i p_i |max(0, s_u,i + Δs_i(w_r)) − s_c,i(w)| / Σ_i p_i s_c,i(w)
 // is taken proportional to how far the uncoupled rate has moved since the refresh,
@@ -210,8 +211,10 @@ class AnalogyContactResponse : public WearContact {
 // differently), a maximum-norm bound would couple every response, and those jumps change sign from step to step. Near
 // the limit, where the worn area hardly grows, nearly every response is lagged. docs/PERFORMANCE.md ("Dissimilar
 // bodies") has the run against every response coupled at 256 to 1024 cells;
-// tests/verification/test_wear_lagged_coupling.cpp holds a run to it. Where the analogy cannot follow the worn contact
-// (it slips backwards at its leading edge) every later response is coupled.
+// tests/verification/test_wear_lagged_coupling.cpp holds a run to it, under force and under displacement control.
+// Under displacement control Q, and with it the uncoupled stick zone's edges within their cells, moves at every
+// response: there the stick zones count as moved when an edge crosses into another cell. Where the analogy cannot
+// follow the worn contact (it slides, or slips backwards at its leading edge) every later response is coupled.
 //
 // Similar bodies under displacement control in partial slip (route "auto", no bulk strain): every response is the
 // analogy's at the Q whose cycle reaches δ (AnalogyContactResponse's displacement mode, on this datum), which for
@@ -282,6 +285,7 @@ class IncrementalContactResponse : public WearContact {
   std::vector<double> slip_correction_, shear_correction_;  // Δs(w_r) (m) and q_top's (Pa)
   double gain_ = -1.0;                 // γ: ε per unit drift; negative before the first refresh
   double area_ref_ = 0.0;              // the worn area of w_r (m²)
+  double Q_correction_ = 0.0;          // Q_top's (N/m): the coupled cycle's Q less the analogy's on w_r
   double tolerance_ = 0.0;             // τ: the stepper's tolerance
 };
 

@@ -18,6 +18,7 @@
 #include "engine/simulation.hpp"
 #include "engine/wear_contacts.hpp"
 #include "scenes.hpp"
+#include "support.hpp"
 #include "wear/implicit_stepper.hpp"
 
 using namespace fretwear;
@@ -30,6 +31,7 @@ constexpr double kStepperTolerance = 1e-3;  // effects.wear.tolerance's default,
 struct Run {
   std::vector<double> w;
   wear::CycleResponse last;
+  double Q = 0.0;  // Q at the top of that response's cycle (N/m)
 };
 
 // The stepper from the unworn profile to each of `times`, as the wear stage drives it (first jump: one cycle).
@@ -47,6 +49,7 @@ std::vector<Run> march(IncrementalContactResponse& contact, double c, const std:
     Run r;
     r.w = w;
     contact.respond(w, r.last);
+    r.Q = contact.Q_top();
     out.push_back(std::move(r));
   }
   return out;
@@ -61,18 +64,33 @@ double area(const std::vector<double>& w, double h) {
 }  // namespace
 
 struct Case {
-  Scene scene = [] {
-    Scene s = test::hertz_wear(1e5, 0.5, 1e5, kCells);
-    s.specimen = {71e9, 0.33};
-    return s;
-  }();
-  Model model = make_model(scene);
-  NormalResult normal = solve_normal(scene, model);
-  CycleStage cycle = solve_cycle(scene, model, normal);
+  // Force control at Q/fP = 0.5, or displacement control at δ = 1 µm (Q/fP = 0.48 in the first cycle, falling as the
+  // slip zones wear), where the lag's uncoupled cycle is the analogy's at the Q that reaches δ and Q_top is
+  // corrected alike.
+  explicit Case(bool displacement = false)
+      : scene([displacement] {
+          Scene s = test::hertz_wear(1e5, 0.5, 1e5, kCells);
+          s.specimen = {71e9, 0.33};
+          if (displacement) {
+            s.Q_ratio.reset();
+            s.control = LoadControl::displacement;
+            s.delta = 1e-6;
+          }
+          return s;
+        }()),
+        model(make_model(scene)),
+        normal(solve_normal(scene, model)),
+        cycle(solve_cycle(scene, model, normal)) {}
+  Scene scene;
+  Model model;
+  NormalResult normal;
+  CycleStage cycle;
 };
 
 TEST_CASE("the lagged coupling wears the coupled run's profile to the stepper's tolerance") {
-  const Case the_case;
+  for (const bool displacement : {false, true}) {
+  CAPTURE(displacement);
+  const Case the_case(displacement);
   const Scene& s = the_case.scene;
   const Model& model = the_case.model;
   const CycleStage& cycle = the_case.cycle;
@@ -105,11 +123,18 @@ TEST_CASE("the lagged coupling wears the coupled run's profile to the stepper's 
           kStepperTolerance * std::abs(full[k].last.stick_left));
     CHECK(std::abs(fast[k].last.stick_right - full[k].last.stick_right) <=
           kStepperTolerance * std::abs(full[k].last.stick_right));
+    // Under displacement control Q is a result: the lagged one is the analogy's plus the last refresh's share.
+    CHECK(fast[k].Q == test::rel(full[k].Q, kStepperTolerance));
+    MESSAGE("at ", times[k], " cycles: worn area ", a_fast / a_full - 1.0, ", max depth ", d_fast / d_full - 1.0,
+            ", Q ", fast[k].Q / full[k].Q - 1.0);
+  }
   }
 }
 
 TEST_CASE("the lagged coupling's state goes through a checkpoint: a restored response answers bit for bit") {
-  const Case c;
+  for (const bool displacement : {false, true}) {
+  CAPTURE(displacement);
+  const Case c(displacement);
   // Profiles along a run's transient: the worn profile after 10^3 cycles, scaled.
   IncrementalContactResponse run(c.scene, c.model, c.cycle);
   const std::vector<Run> worn = march(run, c.scene.wear->coefficient, {1e3});
@@ -131,8 +156,10 @@ TEST_CASE("the lagged coupling's state goes through a checkpoint: a restored res
     CHECK(ra.s == rb.s);
     CHECK(ra.p == rb.p);
     CHECK(a.shear_top() == b.shear_top());
+    CHECK(a.Q_top() == b.Q_top());
   }
   CHECK(a.lagged_responses() == b.lagged_responses());
   CHECK(a.coupled_responses() == b.coupled_responses());
   CHECK(a.lagged_responses() > 0);  // the sequence exercises the lagged responses
+  }
 }

@@ -247,37 +247,29 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
   tolerance_ = scene.wear ? scene.wear->tolerance : WearEffect{}.tolerance;
 }
 
+bool IncrementalContactResponse::respond_by_analogy(std::span<const double> w, wear::CycleResponse& r) {
+  const long solves = analogy_->cycle_solves, iterations = analogy_->cycle_iterations;
+  try {
+    analogy_->respond(w, r);
+  } catch (const UnsupportedError& e) {  // it slides or slips backwards: every response marched from now
+    analogy_.reset();
+    analogy_gave_up_ = e.what();
+    return false;
+  }
+  cycle_solves += analogy_->cycle_solves - solves;
+  cycle_iterations += analogy_->cycle_iterations - iterations;
+  return true;
+}
+
 void IncrementalContactResponse::respond(std::span<const double> w, wear::CycleResponse& out) {
   if (analogy_ && beta_ == 0.0) {  // displacement control, similar bodies: the analogy's response is the cycle's
-    const long solves = analogy_->cycle_solves, iterations = analogy_->cycle_iterations;
-    try {
-      analogy_->respond(w, out);
-    } catch (const UnsupportedError& e) {  // it slides or slips backwards: every response marched from now
-      analogy_.reset();
-      analogy_gave_up_ = e.what();
-    }
-    if (analogy_) {
-      cycle_solves += analogy_->cycle_solves - solves;
-      cycle_iterations += analogy_->cycle_iterations - iterations;
+    if (respond_by_analogy(w, out)) {
       q_top_ = analogy_->shear_top();
       Q_top_ = analogy_->Q_top();
       ++analogy_responses_;
       return;
     }
-  }
-  if (analogy_) {
-    const long solves = analogy_->cycle_solves, iterations = analogy_->cycle_iterations;
-    try {
-      analogy_->respond(w, uncoupled_);
-    } catch (const UnsupportedError&) {  // the analogy cannot follow this contact: every response coupled from now
-      analogy_.reset();
-    }
-    if (analogy_) {
-      cycle_solves += analogy_->cycle_solves - solves;
-      cycle_iterations += analogy_->cycle_iterations - iterations;
-    }
-  }
-  if (analogy_ && lag_allowed(w)) {
+  } else if (analogy_ && respond_by_analogy(w, uncoupled_) && lag_allowed(w)) {
     respond_lagged(out);
     return;
   }

@@ -243,8 +243,8 @@ class IncrementalContactResponse : public WearContact {
   long coupled_responses() const { return coupled_responses_; }
   long mirrored_responses() const { return mirrored_responses_; }
   long lagged_responses() const { return lagged_responses_; }
-  // Similar bodies under displacement control: responses answered by the analogy (header), and why it stopped
-  // answering where it did (empty while it answers every one).
+  // Similar bodies under displacement control: responses answered by the analogy (header). Why the analogy (this
+  // one's, or the lag's) stopped answering where it did: empty while it answers every one.
   long analogy_responses() const { return analogy_responses_; }
   const std::string& analogy_gave_up() const { return analogy_gave_up_; }
   // Dundurs β of the pair: the cycle is coupled where it is not 0.
@@ -253,6 +253,9 @@ class IncrementalContactResponse : public WearContact {
   void restore(const nlohmann::json& j) override;
 
  private:
+  // The analogy's response on w into r, counted; false (and no analogy from now on, analogy_gave_up() saying why)
+  // where it cannot follow the worn contact.
+  bool respond_by_analogy(std::span<const double> w, wear::CycleResponse& r);
   // The cycle solved on w (every response but the lagged ones).
   void respond_coupled(std::span<const double> w, wear::CycleResponse& out);
   // The lagged response from uncoupled_ (the analogy's on w) and the last correction.

@@ -82,25 +82,37 @@ double settled_worn_area(const Grid& grid, const HalfPlaneKernel& kernel, std::s
   return W * grid.h();
 }
 
+double analogy_delta_top(const ReferenceDatum& datum, double f, const ContactState& normal,
+                         const ContactState& corrective, std::vector<double>& q) {
+  q.resize(normal.p.size());
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = f * (normal.p[i] - corrective.p[i]);
+  return f * (normal.approach - corrective.approach) + datum.relative_displacement(q, {});
+}
+
+double analogy_stick_limit(const ReferenceDatum& datum, double f, const ContactState& normal, std::span<const double> g,
+                           std::vector<double>& q) {
+  // At Q = fP: q = f p everywhere, and the corrective contact has shrunk onto the lowest point of g (δ* → min g).
+  q.resize(normal.p.size());
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = f * normal.p[i];
+  const double g_min = *std::min_element(g.begin(), g.end());
+  return f * (normal.approach - g_min) + datum.relative_displacement(q, {});
+}
+
 AnalogyDisplacement::AnalogyDisplacement(const Grid& grid, const HalfPlaneKernel& kernel, std::span<const double> g0,
                                          double P, double f, const ReferenceDatum& datum)
     : grid_(grid), g0_(g0), P_(P), f_(f), datum_(datum), solver_(kernel) {
   require_converged(solver_.solve(g0_, P_, normal_), "normal");
-  // At Q = fP: q = f p everywhere, and the corrective contact has shrunk onto the lowest point of g0 (δ* → min g0).
-  std::vector<double> q(normal_.p.size());
-  for (std::size_t i = 0; i < q.size(); ++i) q[i] = f_ * normal_.p[i];
-  const double g_min = *std::min_element(g0_.begin(), g0_.end());
-  stick_limit_ = f_ * (normal_.approach - g_min) + datum_.relative_displacement(q, {});
+  std::vector<double> q;
+  stick_limit_ = analogy_stick_limit(datum_, f_, normal_, g0_, q);
 }
 
 AnalogyTop AnalogyDisplacement::at(double Q) const {
   ContactState corrective;
   require_converged(solver_.solve(g0_, P_ - Q / f_, corrective), "corrective");
-  std::vector<double> q(normal_.p.size());
-  for (std::size_t i = 0; i < q.size(); ++i) q[i] = f_ * (normal_.p[i] - corrective.p[i]);
+  std::vector<double> q;
   AnalogyTop top;
   top.Q = Q;
-  top.delta = f_ * (normal_.approach - corrective.approach) + datum_.relative_displacement(q, {});
+  top.delta = analogy_delta_top(datum_, f_, normal_, corrective, q);
   top.stick_zones = locate_zones(grid_, corrective.p, g0_);
   return top;
 }

@@ -56,6 +56,14 @@ struct AnalogyTop {
   std::vector<Zone> stick_zones;  // the corrective contact's zones, left to right
 };
 
+// δ_top of the analogy's cycle (header) from its two solves on one gap: the normal contact under P and the corrective
+// one under P − Q/f, f (δ_P − δ*) + D(q_top) with q_top = f (p − p*) (m). q: scratch, resized to the grid.
+double analogy_delta_top(const ReferenceDatum& datum, double f, const ContactState& normal,
+                         const ContactState& corrective, std::vector<double>& q);
+// The stick limit δ_s = f (δ_P − min g) + D(f p) of the normal contact under P on the gap g (header; m).
+double analogy_stick_limit(const ReferenceDatum& datum, double f, const ContactState& normal, std::span<const double> g,
+                           std::vector<double>& q);
+
 // δ_top(Q) on the unworn profile and its inverse (header). Similar bodies, no bulk stress; the grid, kernel, g0 and
 // datum must outlive it.
 class AnalogyDisplacement {

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "common/error.hpp"
+#include "contact/displacement_limit.hpp"
 #include "engine/checkpoint.hpp"
 #include "engine/simulation.hpp"
 
@@ -89,21 +90,14 @@ AnalogyContactResponse::AnalogyContactResponse(const Scene& scene, const Model& 
 }
 
 void AnalogyContactResponse::solve_top_displacement() {
-  const int n = model_.grid.n;
   const double f = *scene_.friction, P = scene_.P;
-  std::vector<double> q(n);
-  // δ_top(Q) − δ with δ_top(Q) = f (δ_P − δ*(Q)) + D(q_top) (contact/displacement_limit.hpp), the corrective solve
-  // warm-started from the last one.
+  std::vector<double> q;
+  // δ_top(Q) − δ (contact/displacement_limit.hpp), the corrective solve warm-started from the last one.
   const auto miss = [&](double Q) {
     solve_worn(P - Q / f, corrective_, "corrective");
-    for (int i = 0; i < n; ++i) q[i] = f * (normal_.p[i] - corrective_.p[i]);
-    return f * (normal_.approach - corrective_.approach) + datum_->relative_displacement(q, {}) - delta_;
+    return analogy_delta_top(*datum_, f, normal_, corrective_, q) - delta_;
   };
-  // At Q = fP the corrective contact shrinks onto the lowest point of the worn gap and q = f p: the stick limit.
-  double g_min = std::numeric_limits<double>::infinity();
-  for (double g : gap_) g_min = std::min(g_min, g);
-  for (int i = 0; i < n; ++i) q[i] = f * normal_.p[i];
-  const double at_limit = f * (normal_.approach - g_min) + datum_->relative_displacement(q, {}) - delta_;
+  const double at_limit = analogy_stick_limit(*datum_, f, normal_, gap_, q) - delta_;
   if (!(at_limit > 0.0))
     throw UnsupportedError(fmt::format("effects.wear: the worn contact slides under delta = {:.6g} m (its stick "
                                        "limit is {:.6g} m), which the analogy route cannot follow",

@@ -152,9 +152,10 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
     const std::string share = w["fraction_of_asymptote"].is_number()
                                   ? fmt::format(" ({:.1f} % of the asymptote)", 100.0 * v(w["fraction_of_asymptote"]))
                                   : std::string(" (no asymptote: see wear.asymptote_note)");
-    std::cout << fmt::format("  wear ({}, {} stepper): {:.4g} cycles in {} steps; worn area {:.4e} m²{}, max depth "
-                             "{:.4e} m",
-                             w["law"].get<std::string>(), w["stepper"].get<std::string>(), v(w["cycles_reached"]),
+    std::cout << fmt::format("  wear ({}, {} stepper, {} route): {:.4g} cycles in {} steps; worn area {:.4e} m²{}, "
+                             "max depth {:.4e} m",
+                             w["law"].get<std::string>(), w["stepper"].get<std::string>(),
+                             w["route"].get<std::string>(), v(w["cycles_reached"]),
                              w["steps"].get<long>(), v(w["worn_area"]), share, v(w["max_depth"]));
     if (w["stick_zones_initial"].size() > 1 || w["stick_zones_final"].size() > 1)
       std::cout << fmt::format("; stick zones {} at the first record, {} at the last", zones(w["stick_zones_initial"]),

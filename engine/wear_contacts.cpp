@@ -131,9 +131,9 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   for (int i = 0; i < n; ++i) {
     if (corrective_.p[i] > 0.0 && !(normal_.p[i] > 0.0))
       throw UnsupportedError(fmt::format("effects.wear: the worn contact slips backwards at its leading edge (reverse "
-                                         "slip at x = {:.6g} m), which the analogy route cannot follow; set "
-                                         "effects.tangential.route to \"incremental\"",
-                                         grid.x(i)));
+                                         "slip at x = {:.6g} m), which the analogy route cannot follow{}",
+                                         grid.x(i),
+                                         advise_route_ ? "; set effects.tangential.route to \"incremental\"" : ""));
     if (normal_.p[i] > 0.0 && !(corrective_.p[i] > 0.0)) out.s[i] = 4.0 * f * std::max(corrective_.gap[i], 0.0);
     q_top_[i] = f * (normal_.p[i] - corrective_.p[i]);
   }
@@ -238,6 +238,7 @@ IncrementalContactResponse::IncrementalContactResponse(const Scene& scene, const
   if (beta_ == 0.0 && load_.delta > 0.0 && load_.history.empty() && load_.bulk_strain == 0.0 &&
       scene.tangential->route == TangentialRoute::automatic && cycle.result.regime == Regime::partial_slip)
     analogy_ = std::make_unique<AnalogyContactResponse>(scene, model, load_, datum_);
+  if (analogy_) analogy_->falls_back();  // where the analogy gives up, every later response is marched (respond)
   tolerance_ = scene.wear ? scene.wear->tolerance : WearEffect{}.tolerance;
 }
 

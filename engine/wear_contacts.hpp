@@ -116,6 +116,9 @@ class AnalogyContactResponse : public WearContact {
   double Q_top() const override { return Q_; }
   // The last corrective pressure (for records).
   const std::vector<double>& corrective_pressure() const { return corrective_.p; }
+  // Where it gives up on reverse slip, its message advises effects.tangential.route "incremental", unless the
+  // caller already falls back to that route by itself (IncrementalContactResponse).
+  void falls_back() { advise_route_ = false; }
   // The stick zones of the last cycle, one per run of the corrective contact (several where the contact has
   // several zones); the CycleResponse carries only their span.
   const std::vector<Zone>& stick_zones() const { return stick_zones_; }
@@ -129,6 +132,7 @@ class AnalogyContactResponse : public WearContact {
   double tilt_ = 0.0, corrective_load_ = 0.0, Q_ = 0.0;
   const ReferenceDatum* datum_ = nullptr;  // displacement control: the cycle stage's datum
   double delta_ = 0.0;
+  bool advise_route_ = true;
   ContactState normal_, corrective_;
   std::vector<double> q_top_;
   std::vector<Zone> stick_zones_;

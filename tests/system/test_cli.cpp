@@ -196,7 +196,7 @@ TEST_CASE("run reports each stage that ran, and --verbose adds how it was solved
                 "crack": {"lengths": [1e-5, 2e-5]}}})");
   const Outcome plain = s.fretwear({"run", "s.json"});
   REQUIRE_MESSAGE(plain.exited(kDone), plain.describe());
-  for (const char* line : {"cli: contact [", "  cycle (partial_slip, analogy route)", "  wear (archard, implicit stepper)",
+  for (const char* line : {"cli: contact [", "  cycle (partial_slip, analogy route)", "  wear (archard, implicit stepper, analogy route)",
                            "  stress at the top of the cycle", "  crack at x = ", "results in "})
     CHECK_MESSAGE(plain.all().find(line) != std::string::npos, line);
   CHECK(plain.all().find("timings") == std::string::npos);

@@ -136,3 +136,45 @@ TEST_CASE("wear under displacement control: gross slip and a bulk stress keep th
   REQUIRE(rs.wear);
   CHECK(rs.wear->route == "incremental");
 }
+
+TEST_CASE("wear under displacement control: where the analogy gives up the cycle is marched, and says why") {
+  // A block's δ beyond the stick limit (1.22 µm) on the cycle stage of δ = 1 µm: the analogy finds the bodies
+  // sliding and the response is the marched one, in gross slip.
+  const Scene s = displaced(128, 1e2, TangentialRoute::automatic);
+  const Setup setup = make_setup(s);
+  const NormalResult normal = solve_normal(s, setup.model);
+  const CycleStage cycle = solve_cycle(s, setup.model, *setup.cycle, normal);
+  CyclicLoad beyond = cycle.plan.load;
+  beyond.delta = 1.5e-6;
+  IncrementalContactResponse contact(s, setup.model, cycle, beyond);
+  wear::CycleResponse r;
+  contact.respond(std::vector<double>(std::size_t(setup.model.grid.n), 0.0), r);
+  CHECK(contact.analogy_responses() == 0);
+  CHECK(contact.last_cycle().regime == Regime::gross_slip);
+  const std::string why = contact.analogy_gave_up();
+  MESSAGE(why);
+  CHECK(why.find("slides under delta = 1.5e-06 m") != std::string::npos);
+}
+
+TEST_CASE("the analogy's reverse slip advises the incremental route only where nothing falls back to it") {
+  // paper 001's reverse slip (a bulk stress of 304 MPa with Q/fP = 0.45), on 256 cells.
+  Scene s = test::paper001_mindlin(256, 304.22e6);
+  s.wear = test::hertz_wear(1e5, 0.5, 1e3, 256).wear;
+  const Model m = make_model(s);
+  const std::vector<double> w(std::size_t(m.grid.n), 0.0);
+  for (const bool falls_back : {false, true}) {
+    CAPTURE(falls_back);
+    AnalogyContactResponse contact(s, m, cyclic_load(s, m.pair));
+    if (falls_back) contact.falls_back();
+    wear::CycleResponse r;
+    std::string why;
+    try {
+      contact.respond(w, r);
+    } catch (const UnsupportedError& e) {
+      why = e.what();
+    }
+    MESSAGE(why);
+    CHECK(why.find("slips backwards at its leading edge") != std::string::npos);
+    CHECK((why.find("set effects.tangential.route to \"incremental\"") != std::string::npos) == !falls_back);
+  }
+}

@@ -235,6 +235,7 @@ BoxConstrainedCg::BoxConstrainedCg(const HalfPlaneKernel& kernel, std::span<cons
     if (contact_[i]) first_ = std::min(first_, i), last_ = i, capacity_ += h_ * hi_[i];
   }
   state_.dw.assign(n_, 0.0);
+  state_.dw_touching.assign(n_, 0.0);
 }
 
 void BoxConstrainedCg::start() {
@@ -295,11 +296,17 @@ double BoxConstrainedCg::kkt_residual() {
 
 // Δw = −Δs on the cells at a bound; the cells that stick do not slip, nor does a bound cell whose residual points
 // inward by less than the tolerance (it is taken as sticking, so that q Δw ≥ 0 holds exactly).
+// Off the contact u = K q is exact on every cell (residual() stops on an exact u), so −(Δs − λ) is that cell's
+// relative tangential displacement over the increment.
 void BoxConstrainedCg::record_slip() {
   for (int i = 0; i < n_; ++i) {
-    if (!contact_[i]) continue;
+    if (!contact_[i]) {
+      state_.dw_touching[i] = -(u_[i] - u_prev_[i] + d_eps_ * grid_.x(i) - lambda_);
+      continue;
+    }
     if (q_[i] >= hi_[i]) state_.dw[i] = std::max(-g_[i], 0.0);
     else if (q_[i] <= lo_[i]) state_.dw[i] = std::min(-g_[i], 0.0);
+    state_.dw_touching[i] = state_.dw[i];
   }
   state_.shift = lambda_;
 }
@@ -429,6 +436,7 @@ void accumulate_slip(const IncrementState& state, std::vector<double>& w, std::v
     r.slip_travelled[i] += std::abs(dw);
     r.energy_density[i] += state.q[i] * dw;
   }
+  for (std::size_t i = 0; i < w.size(); ++i) r.slip_if_touching[i] += std::abs(state.dw_touching[i]);
 }
 
 // What a marched cycle leaves besides its tractions: per cell the slip range (w_max − w_min over the cycle), the
@@ -723,6 +731,7 @@ CycleResult IncrementalSlipSolver::Run::begin_cycle() {
   w_min_.assign(n_, 0.0);
   w_max_.assign(n_, 0.0);
   r.slip_travelled.assign(n_, 0.0);
+  r.slip_if_touching.assign(n_, 0.0);
   r.energy_density.assign(n_, 0.0);
   if (datum_) {
     r.first_loading = first_loading_;
@@ -841,10 +850,12 @@ void IncrementalSlipSolver::AmplitudeRun::mirror_reloading(CycleResult& r, std::
                                                            IncrementState top, std::vector<double> p_top) {
   const auto mirror = [n = n_](int i) { return n - 1 - i; };
   const std::vector<double> e = r.energy_density, travelled = r.slip_travelled, w_min = w_min_, w_max = w_max_;
+  const std::vector<double> touching = r.slip_if_touching;
   r.q_reloaded.resize(std::size_t(n_));
   for (int i = 0; i < n_; ++i) {
     r.energy_density[i] += e[mirror(i)];
     r.slip_travelled[i] += travelled[mirror(i)];
+    r.slip_if_touching[i] += touching[mirror(i)];
     w_max_[i] = std::max(w_max[i], w_[i] - w_min[mirror(i)]);
     w_min_[i] = std::min(w_min[i], w_[i] - w_max[mirror(i)]);
     r.q_reloaded[i] = -r.q_unloaded[mirror(i)];
@@ -967,8 +978,10 @@ std::pair<double, SolveSummary> IncrementalSlipSolver::AmplitudeRun::accept(Delt
 
 double IncrementalSlipSolver::AmplitudeRun::slide(double Q_bound, double miss) {
   extra_ = -miss;
-  for (int i = 0; i < n_; ++i)
+  for (int i = 0; i < n_; ++i) {
     if (hi_[i] > 0.0) state_.dw[i] += extra_;
+    state_.dw_touching[i] += extra_;  // the bodies slide past every x alike
+  }
   return Q_bound;
 }
 

@@ -176,6 +176,9 @@ struct IncrementState {
   std::vector<double> q;      // shear traction per cell (Pa)
   std::vector<double> u;      // K q per cell (m), carried to the next increment
   std::vector<double> dw;     // slip increment per cell (m)
+  // The slip increment a cell would make were it touching without load (m): dw on the contact; off it, where q = 0
+  // and nothing holds the surfaces together, the change of their relative tangential displacement, −(Δs − λ).
+  std::vector<double> dw_touching;
   double shift = 0.0;         // λ of the increment: the rigid shift of the pad relative to the specimen (m)
 };
 

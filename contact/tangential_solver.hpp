@@ -68,6 +68,10 @@ struct CycleResult {
   std::vector<double> q_top, q_unloaded, q_bottom, q_reloaded;  // shear traction per cell at the four phases (Pa)
   std::vector<double> slip_range;      // peak-to-peak relative tangential displacement per cell (m)
   std::vector<double> slip_travelled;  // distance slipped per cycle per cell (m)
+  // The distance a cell would slip per cycle were it touching without load (m; incremental route): slip_travelled
+  // where it carries pressure, Σ |Δw| of IncrementState::dw_touching where it does not (the worn flats at zero gap
+  // and zero pressure near a wear limit; wear/contact_response.hpp, CycleResponse::s_touching).
+  std::vector<double> slip_if_touching;
   std::vector<double> energy_density;  // frictional energy per cycle per unit area (J/m²)
   double dissipated_energy = 0.0;      // per cycle per unit length (J/m)
   double slip_max = 0.0;               // largest slip range, at the contact's edges to sub-cell accuracy (m)

@@ -324,7 +324,12 @@ void IncrementalContactResponse::respond_lagged(wear::CycleResponse& out) {
   out.s.assign(n, 0.0);
   for (int i = 0; i < n; ++i)
     if (out.p[i] > 0.0) out.s[i] = std::max(0.0, uncoupled_.s[i] + slip_correction_[i]);
-  out.s_touching.clear();  // partial slip: as the coupled response
+  // Off the contact the slip on touching, corrected alike by the last refresh's share there.
+  const std::vector<double>& t_u = uncoupled_.slip_if_touching();
+  out.s_touching = out.s;
+  for (int i = 0; i < n; ++i)
+    if (!(out.p[i] > 0.0))
+      out.s_touching[i] = std::max(0.0, t_u[i] + (touching_correction_.empty() ? 0.0 : touching_correction_[i]));
   out.has_stick = coupled_ref_.has_stick;
   out.stick_left = coupled_ref_.stick_left;
   out.stick_right = coupled_ref_.stick_right;
@@ -363,6 +368,12 @@ void IncrementalContactResponse::refresh(std::span<const double> w, const wear::
     slip_correction_[i] = out.p[i] > 0.0 ? out.s[i] - uncoupled_.s[i] : 0.0;
     shear_correction_[i] = q_top_[i] - q_u[i];
   }
+  // Off the contact, the distance travelled on touching: the coupled cycle's (where it slipped, the slip travelled,
+  // not the energy's equivalent) against the analogy's, on every cell with material.
+  const std::vector<double>& t_u = uncoupled_.slip_if_touching();
+  touching_correction_.assign(n, 0.0);
+  for (int i = 0; i < n; ++i)
+    if (std::isfinite(gap_[i])) touching_correction_[i] = cycle_.slip_if_touching[i] - t_u[i];
   Q_correction_ = Q_top_ - analogy_->Q_top();  // 0 under force control; the coupling's share of Q under δ
   uncoupled_ref_ = uncoupled_;
   coupled_ref_ = out;
@@ -415,11 +426,16 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   out.stick_zones.clear();
   if (out.has_stick && cycle_.stick_zones.size() > 1) out.stick_zones = cycle_.stick_zones;
   // In gross slip a cell out of contact would slide as its neighbours do on touching (wear/implicit_stepper.hpp:
-  // lagging it at 0 is what makes the contact-implicit step unstable there). In partial slip it would not slip.
-  if (cycle_.regime == Regime::gross_slip)
+  // lagging it at 0 is what makes the contact-implicit step unstable there). In partial slip it would slip what
+  // the cycle moved its surfaces relative to each other (CycleResult::slip_if_touching), as the analogy's 4 f (g* − g)
+  // says for similar bodies (AnalogyContactResponse, which says why the step needs it).
+  if (cycle_.regime == Regime::gross_slip) {
     out.s_touching = continued_over_gaps(ref.p, out.s);
-  else
-    out.s_touching.clear();
+    return;
+  }
+  out.s_touching = out.s;
+  for (int i = 0; i < n; ++i)
+    if (!(ref.p[i] > 0.0) && std::isfinite(ref.gap[i])) out.s_touching[i] = cycle_.slip_if_touching[i];
 }
 
 namespace {
@@ -464,6 +480,7 @@ json IncrementalContactResponse::save() const {
                    {"coupled_ref", response_json(coupled_ref_)},
                    {"slip_correction", slip_correction_},
                    {"shear_correction", shear_correction_},
+                   {"touching_correction", touching_correction_},
                    {"gain", gain_},
                    {"area_ref", area_ref_},
                    {"Q_correction", Q_correction_}};
@@ -495,6 +512,8 @@ void IncrementalContactResponse::restore(const json& j) {
   response_from(l.at("coupled_ref"), coupled_ref_);
   l.at("slip_correction").get_to(slip_correction_);
   l.at("shear_correction").get_to(shear_correction_);
+  touching_correction_.clear();  // absent from checkpoints written before the slip on touching was lagged
+  if (l.contains("touching_correction")) l.at("touching_correction").get_to(touching_correction_);
   gain_ = l.at("gain").get<double>();
   area_ref_ = l.at("area_ref").get<double>();
   Q_correction_ = l.value("Q_correction", 0.0);

@@ -175,6 +175,10 @@ class AnalogyContactResponse : public WearContact {
 //    travelled: exact (c p_ref s = c e / f) wherever p_ref ≥ p̄/2, and below that the wear rate is c p_ref · 2Σ|Δw|,
 //    less than the energy's, falling to zero with p_ref. Such cells wear as the uncoupled pressure under P says;
 //    the limit the run tends to is then that of the pressure under P (PERFORMANCE.md, "Dissimilar bodies").
+//  - off the contact (p_ref = 0, material there): the slip on touching, CycleResponse::s_touching, that the
+//    contact-implicit step takes for the cells it loads (AnalogyContactResponse says why): in partial slip what the
+//    marched cycle moved the surfaces there relative to each other (CycleResult::slip_if_touching), in gross slip
+//    the contact's s continued over the gaps (the bodies slide past every x alike).
 //
 // The coupled cycle (β ≠ 0 under a constant P, force or displacement control) settles in kSettlingIncrements = 4
 // per cycle: the first loading in one increment and the first cycle in four, then the scene's steady cycle (45
@@ -193,7 +197,8 @@ class AnalogyContactResponse : public WearContact {
 //     s(w) = max(0, s_u(w) + Δs(w_r))   on the contact of p(w) (zero off it),   Δs(w_r) = s_c(w_r) − s_u(w_r),
 // s_u the uncoupled slip, s_c the coupled one (the energy's equivalent above) and w_r the profile of the last
 // coupled response (the refresh); the shear at the top of the cycle is corrected alike, and so is Q under
-// displacement control (Q_u(w) + Q_c(w_r) − Q_u(w_r)); the stick zones are the refresh's. Its error is measured, as the stepper measures the worn profile, in the wear it adds: with the rates
+// displacement control (Q_u(w) + Q_c(w_r) − Q_u(w_r)), and off the contact the slip on touching (the coupled cycle's
+// slip_if_touching less the analogy's at w_r); the stick zones are the refresh's. Its error is measured, as the stepper measures the worn profile, in the wear it adds: with the rates
 // r = p s, the relative error of the lagged rate of the worn area (h c Σ_i p_i s_i)
 //     ε = Σ_i p_i |max(0, s_u,i + Δs_i(w_r)) − s_c,i(w)| / Σ_i p_i s_c,i(w)
 // is taken proportional to how far the uncoupled rate has moved since the refresh,
@@ -290,6 +295,8 @@ class IncrementalContactResponse : public WearContact {
   wear::CycleResponse uncoupled_ref_;  // ... and on w_r
   wear::CycleResponse coupled_ref_;    // the coupled response on w_r (its stick zones)
   std::vector<double> slip_correction_, shear_correction_;  // Δs(w_r) (m) and q_top's (Pa)
+  // Off the contact: the coupled cycle's slip on touching less the uncoupled one's at w_r (m; CycleResponse::s_touching)
+  std::vector<double> touching_correction_;
   double gain_ = -1.0;                 // γ: ε per unit drift; negative before the first refresh
   double area_ref_ = 0.0;              // the worn area of w_r (m²)
   double Q_correction_ = 0.0;          // Q_top's (N/m): the coupled cycle's Q less the analogy's on w_r

@@ -10,6 +10,7 @@
 // wear stepper may err by in a step (τ = 1e-3); the records between, where the two runs' steps part, to τ.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -72,6 +73,23 @@ void check_same(const Responses& r) {
   CHECK(r.Q_analogy == test::rel(r.Q_marched, kAgreement));
   CHECK(max_abs_diff(r.analogy.s, r.marched.s) < kAgreement * s_max);
   CHECK(max_abs_diff(r.analogy.p, r.marched.p) < kAgreement * *std::max_element(r.marched.p.begin(), r.marched.p.end()));
+  // Off the contact, the slip on touching: the analogy's 4 f (g* − g), the marched cycle's relative tangential
+  // displacement of the surfaces there (CycleResult::slip_if_touching).
+  const std::vector<double>& ta = r.analogy.slip_if_touching();
+  const std::vector<double>& tm = r.marched.slip_if_touching();
+  int open = 0;
+  double touching_apart = 0.0, touching_max = 0.0;
+  for (std::size_t i = 0; i < ta.size(); ++i) {
+    if (r.marched.p[i] > 0.0) continue;
+    ++open;
+    touching_apart = std::max(touching_apart, std::abs(ta[i] - tm[i]));
+    touching_max = std::max(touching_max, ta[i]);
+  }
+  MESSAGE(fmt::format("slip on touching over {} cells off the contact: up to {:.4g} m, {:.3g} of the largest slip apart",
+                      open, touching_max, touching_apart / s_max));
+  REQUIRE(open > 0);
+  CHECK(touching_max > 0.1 * s_max);  // the cells off the contact would slip, and not a little
+  CHECK(touching_apart < kAgreement * s_max);
   REQUIRE(r.analogy.has_stick);
   REQUIRE(r.marched.has_stick);
   CHECK(r.analogy.stick_left == test::rel(r.marched.stick_left, kAgreement));
@@ -177,4 +195,26 @@ TEST_CASE("the analogy's reverse slip advises the incremental route only where n
     CHECK(why.find("slips backwards at its leading edge") != std::string::npos);
     CHECK((why.find("set effects.tangential.route to \"incremental\"") != std::string::npos) == !falls_back);
   }
+}
+
+TEST_CASE("wear under displacement control at 1024 cells: the marched run reaches the analogy's settled limit") {
+  // δ = 1 µm over 10^6 cycles: the run settles, its worn flats at zero gap and zero pressure beside the stick zone.
+  // Both responses give those cells the slip they would travel on touching; given none, the marched run's worn
+  // flats stood proud of their neighbours by each step's error and the run stopped 2.4e-3 short in worn area.
+  Scene a = displaced(1024, 1e6, TangentialRoute::automatic);
+  Scene m = displaced(1024, 1e6, TangentialRoute::incremental);
+  const RunResult ra = Simulation(a).run(), rm = Simulation(m).run();
+  REQUIRE(ra.wear);
+  REQUIRE(rm.wear);
+  REQUIRE(ra.wear->settled);
+  REQUIRE(rm.wear->settled);
+  const WearRecord& ea = ra.wear->records.back();
+  const WearRecord& em = rm.wear->records.back();
+  MESSAGE(fmt::format("worn area {:.10g} (analogy) against {:.10g} m² (marched), {:.3g}; each against its settled "
+                      "limit {:.8f} and {:.8f}",
+                      ea.worn_area, em.worn_area, em.worn_area / ea.worn_area - 1.0,
+                      ea.worn_area / ra.wear->settled->worn_area, em.worn_area / rm.wear->settled->worn_area));
+  CHECK(em.worn_area == test::rel(ea.worn_area, kAgreement));
+  CHECK(em.worn_area == test::rel(rm.wear->settled->worn_area, kAgreement));
+  CHECK(ea.worn_area == test::rel(ra.wear->settled->worn_area, kAgreement));
 }

@@ -630,11 +630,16 @@ class IncrementalSlipSolver::HistoryRun : public Run {
   };
 
   LoopPoint loop_point() const override { return {prev_.P, prev_.Q, delta(p_now_, prev_.eps)}; }
-  // The increments' ends: the first loading's, then each segment of the history split into ⌈m Δt / T⌉ equal steps.
-  void split(const std::vector<HistoryPoint>& H);
-  // The phases: top and bottom at the largest and the smallest Q; unloaded and reloaded where Q first crosses their
-  // mean after each.
-  void find_phases();
+  // The increments of one cycle and its phases, as indices into them.
+  struct Cycle {
+    std::vector<Target> targets;
+    int top = 0, bottom = 0, unloaded = 0, reloaded = 0;
+  };
+  // The first loading's increments: m/4 equal steps to the first point.
+  void split_first_loading(const HistoryPoint& first, int m);
+  // Each segment of the history split into ⌈m Δt / T⌉ equal steps; the phases: top and bottom at the largest and the
+  // smallest Q, unloaded and reloaded where Q first crosses their mean after each.
+  static Cycle split(const std::vector<HistoryPoint>& H, int m);
   // The pressure under P: one normal solve per distinct P, warm-started from the nearest P solved.
   const std::vector<double>& pressure_at(double P);
   // The increment to t, solved and recorded.
@@ -646,8 +651,8 @@ class IncrementalSlipSolver::HistoryRun : public Run {
   const NormalSolver normal_;
   double P0_ = 0.0;             // h Σ p of the contact (N/m)
   std::map<double, std::vector<double>> pressures_;
-  std::vector<Target> first_, cycle_targets_;
-  int j_top_ = 0, j_bottom_ = 0, j_unloaded_ = 0, j_reloaded_ = 0;
+  std::vector<Target> first_;
+  Cycle settling_, steady_;     // the cycles before the last (settling_increments), and the last
   std::vector<double> lo_, hi_, p_now_;
   Target prev_;                 // the loads at the end of the last increment
 };
@@ -1131,33 +1136,38 @@ IncrementalSlipSolver::HistoryRun::HistoryRun(const IncrementalSlipSolver& solve
   for (double pi : contact.p) P0_ += h_ * pi;
   pressures_[P0_] = contact.p;
   prev_ = {P0_, 0.0, 0.0};
-  split(load.history);
-  find_phases();
+  // As solve()'s: with settling_increments the march before the last cycle takes that many a cycle (header).
+  const int m_settle = options_.cycles > 1 && options_.settling_increments > 0 ? options_.settling_increments : m_;
+  split_first_loading(load.history.front(), m_settle);
+  settling_ = split(load.history, m_settle);
+  steady_ = split(load.history, m_);
 }
 
-void IncrementalSlipSolver::HistoryRun::split(const std::vector<HistoryPoint>& H) {
-  for (int k = 1; k <= m_ / 4; ++k) {
-    const double s = 4.0 * k / m_;
-    first_.push_back({P0_ + s * (H[0].P - P0_), s * H[0].Q, s * H[0].bulk_strain});
+void IncrementalSlipSolver::HistoryRun::split_first_loading(const HistoryPoint& first, int m) {
+  for (int k = 1; k <= m / 4; ++k) {
+    const double s = 4.0 * k / m;
+    first_.push_back({P0_ + s * (first.P - P0_), s * first.Q, s * first.bulk_strain});
   }
+}
+
+IncrementalSlipSolver::HistoryRun::Cycle IncrementalSlipSolver::HistoryRun::split(const std::vector<HistoryPoint>& H,
+                                                                                  int m) {
+  Cycle c;
+  std::vector<Target>& targets = c.targets;
   const double T = H.back().t - H.front().t;
   for (std::size_t j = 1; j < H.size(); ++j) {
-    const int steps = std::max(1, int(std::ceil(m_ * (H[j].t - H[j - 1].t) / T - 1e-9)));
+    const int steps = std::max(1, int(std::ceil(m * (H[j].t - H[j - 1].t) / T - 1e-9)));
     for (int k = 1; k <= steps; ++k) {
       const double s = double(k) / steps;
-      cycle_targets_.push_back({H[j - 1].P + s * (H[j].P - H[j - 1].P), H[j - 1].Q + s * (H[j].Q - H[j - 1].Q),
-                                H[j - 1].bulk_strain + s * (H[j].bulk_strain - H[j - 1].bulk_strain)});
+      targets.push_back({H[j - 1].P + s * (H[j].P - H[j - 1].P), H[j - 1].Q + s * (H[j].Q - H[j - 1].Q),
+                         H[j - 1].bulk_strain + s * (H[j].bulk_strain - H[j - 1].bulk_strain)});
     }
   }
-}
-
-void IncrementalSlipSolver::HistoryRun::find_phases() {
-  const auto& targets = cycle_targets_;
   for (std::size_t j = 0; j < targets.size(); ++j) {
-    if (targets[j].Q > targets[j_top_].Q) j_top_ = int(j);
-    if (targets[j].Q < targets[j_bottom_].Q) j_bottom_ = int(j);
+    if (targets[j].Q > targets[c.top].Q) c.top = int(j);
+    if (targets[j].Q < targets[c.bottom].Q) c.bottom = int(j);
   }
-  const double Q_mid = 0.5 * (targets[j_top_].Q + targets[j_bottom_].Q);
+  const double Q_mid = 0.5 * (targets[c.top].Q + targets[c.bottom].Q);
   const int n_targets = int(targets.size());
   auto crossing = [&](int from, bool down) {
     for (int k = 1; k <= n_targets; ++k) {
@@ -1166,8 +1176,9 @@ void IncrementalSlipSolver::HistoryRun::find_phases() {
     }
     return from;
   };
-  j_unloaded_ = crossing(j_top_, true);
-  j_reloaded_ = crossing(j_bottom_, false);
+  c.unloaded = crossing(c.top, true);
+  c.reloaded = crossing(c.bottom, false);
+  return c;
 }
 
 const std::vector<double>& IncrementalSlipSolver::HistoryRun::pressure_at(double P) {
@@ -1196,21 +1207,22 @@ void IncrementalSlipSolver::HistoryRun::first_loading() {
 void IncrementalSlipSolver::HistoryRun::cycle(int c) {
   CycleResult r = begin_cycle();
   std::vector<double> hi_top, hi_unloaded;
-  for (int j = 0; j < int(cycle_targets_.size()); ++j) {
-    r.solves.push_back(step(cycle_targets_[j], c, j + 1));
+  const Cycle& cy = c < options_.cycles ? settling_ : steady_;
+  for (int j = 0; j < int(cy.targets.size()); ++j) {
+    r.solves.push_back(step(cy.targets[j], c, j + 1));
     end_increment(r, prev_.Q);
     // The pressure and the bulk strain at the top and the bottom, at any β: P and ε vary along a history, so the
     // phases there are not the contact's pressure under load.P with ±ε.
-    if (j == j_top_) {
+    if (j == cy.top) {
       r.q_top = state_.q, hi_top = hi_;
       result_.p_top = p_now_, result_.bulk_strain_top = prev_.eps;
     }
-    if (j == j_bottom_) {
+    if (j == cy.bottom) {
       r.q_bottom = state_.q;
       result_.p_bottom = p_now_, result_.bulk_strain_bottom = prev_.eps;
     }
-    if (j == j_unloaded_) r.q_unloaded = state_.q, hi_unloaded = hi_;
-    if (j == j_reloaded_) r.q_reloaded = state_.q;
+    if (j == cy.unloaded) r.q_unloaded = state_.q, hi_unloaded = hi_;
+    if (j == cy.reloaded) r.q_reloaded = state_.q;
   }
   close_cycle(grid_, w_max_, w_min_, hi_top, hi_unloaded, r);
   int n_backward = 0;

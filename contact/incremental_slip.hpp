@@ -90,9 +90,10 @@
 // first loading is then not yet the steady one (tests/verification/test_cycle_dissimilar.cpp: 0.1 % in energy for steel
 // on titanium), the second is. Only the last cycle is reported, and the march before it only has to leave the state at
 // its top: settling_increments > 0 marches the first loading in a quarter of them and the cycles before the last in
-// that many (solve() only). The top state after a full reversal hardly remembers that march: with 4 (the first loading
-// in one increment, the first cycle in four) the reported cycle's energy moved by 1e-8 to 1e-7 and its traction by 1e-6
-// p0 at 512 and 1024 cells, for steel on titanium and on aluminium, Q/fP = 0.5 and 0.85
+// that many (under a load history each segment in its share of them, one at least). The top state after a full
+// reversal hardly remembers that march: with 4 (the first loading in one increment, the first cycle in four) the
+// reported cycle's energy moved by 1e-8 to 1e-7 and its traction by 1e-6 p0 at 512 and 1024 cells, for steel on
+// titanium and on aluminium, Q/fP = 0.5 and 0.85, and under a history with P out of phase with Q by 2e-8 and 7e-7 p0
 // (tests/verification/test_coupled_increments.cpp), what the inner tolerances let through above. The wear stage's
 // coupled responses take 4 (engine/wear_contacts.hpp); the cycle stage marches every cycle in full. Under displacement
 // control with β ≠ 0 each evaluation of the δ search above is such a coupled increment to its Q, from the increment's
@@ -140,7 +141,7 @@ struct IncrementalSlipOptions {
   int increments_per_cycle = 40;  // load steps over +Q → −Q → +Q (the first loading 0 → Q takes a quarter of
                                   // them); a multiple of 4 and ≥ 4, so that Q = 0 and ±Q are increment ends
   int cycles = 1;                 // steady cycles after the first loading; ≥ 1
-  // Increments of the cycles before the last one (the first loading takes a quarter of them) under solve(): 0 for
+  // Increments of the cycles before the last one (the first loading takes a quarter of them): 0 for
   // increments_per_cycle; else a multiple of 4 (see above: only the last cycle is reported).
   int settling_increments = 0;
   double tolerance = 1e-8;        // on the residual r above; in (0, 1e-2]

@@ -180,20 +180,25 @@ class AnalogyContactResponse : public WearContact {
 //    marched cycle moved the surfaces there relative to each other (CycleResult::slip_if_touching), in gross slip
 //    the contact's s continued over the gaps (the bodies slide past every x alike).
 //
-// The coupled cycle (β ≠ 0 under a constant P, force or displacement control) settles in kSettlingIncrements = 4
-// per cycle: the first loading in one increment and the first cycle in four, then the scene's steady cycle (45
+// The coupled cycle (β ≠ 0: force or displacement control, or a load history) settles in kSettlingIncrements = 4
+// per cycle: the first loading in one increment and the first cycle in four (a history's segments in their shares of
+// four, one each at least), then the scene's steady cycle (45
 // increments of about five block Gauss–Seidel sweeps at 40 per cycle, against 90 marching all at 40): only the
 // steady cycle is reported, and the state at its start hardly remembers the march to it (contact/incremental_slip.hpp,
-// settling_increments, and tests/verification/test_coupled_increments.cpp: 1e-8 of the energy, 1e-6 p0). On an even
+// settling_increments, and tests/verification/test_coupled_increments.cpp: 1e-8 of the energy, 1e-6 p0; under a
+// history with P out of phase, 2e-8 and 7e-7 p0). Under a constant P, on an even
 // worn gap (Hertz, any symmetric profile, worn by symmetric cycles) it marches only the unloading half of the steady
 // cycle and takes the reloading half as its mirror image (mirror_half_cycle, contact/incremental_slip.hpp): 25
 // increments instead of 45, the energy within 5e-7 of the full march's (under displacement control, where each
 // increment is a δ search, 2.3e-7: tests/verification/test_coupled_mirror.cpp).
 //
 // The lagged coupling (β ≠ 0 under a constant P, Coupling::lagged, the default; under displacement control in partial
-// slip without bulk strain). The analogy's uncoupled cycle on the same worn profile (AnalogyContactResponse: a normal
-// and a corrective solve; under displacement control a dozen corrective solves more, for the Q that reaches δ)
-// costs a few hundredths of a coupled cycle. So a response may be
+// slip without bulk strain; under a load history). The analogy's uncoupled cycle on the same worn profile
+// (AnalogyContactResponse: a normal and a corrective solve; under displacement control a dozen corrective solves
+// more, for the Q that reaches δ) costs a few hundredths of a coupled cycle; under a history there is no analogy, and
+// the uncoupled cycle is the marched one of β = 0 through the same history (an IncrementalContactResponse of its
+// own: one tangential solve an increment where the coupled cycle takes some five sweeps of a normal and a tangential
+// solve, and the first loading and first run through the history in full), about a tenth. So a response may be
 //     s(w) = max(0, s_u(w) + Δs(w_r))   on the contact of p(w) (zero off it),   Δs(w_r) = s_c(w_r) − s_u(w_r),
 // s_u the uncoupled slip, s_c the coupled one (the energy's equivalent above) and w_r the profile of the last
 // coupled response (the refresh); the shear at the top of the cycle is corrected alike, and so is Q under
@@ -220,9 +225,10 @@ class AnalogyContactResponse : public WearContact {
 // differently), a maximum-norm bound would couple every response, and those jumps change sign from step to step. Near
 // the limit, where the worn area hardly grows, nearly every response is lagged. docs/PERFORMANCE.md ("Dissimilar
 // bodies") has the run against every response coupled at 256 to 1024 cells;
-// tests/verification/test_wear_lagged_coupling.cpp holds a run to it, under force and under displacement control.
-// Under displacement control Q, and with it the uncoupled stick zone's edges within their cells, moves at every
-// response: there the stick zones count as moved when an edge crosses into another cell. Where the analogy cannot
+// tests/verification/test_wear_lagged_coupling.cpp holds a run to it, under force and under displacement control
+// and under a history. Under displacement control Q, and with it the uncoupled stick zone's edges within their cells,
+// moves at every response, and under a history the marched stick zone's edges move with the pressure the worn slip
+// zones leave it: there the stick zones count as moved when an edge crosses into another cell. Where the analogy cannot
 // follow the worn contact (it slides, or slips backwards at its leading edge) every later response is coupled.
 //
 // Similar bodies under displacement control in partial slip (route "auto", no bulk strain): every response is the
@@ -232,8 +238,7 @@ class AnalogyContactResponse : public WearContact {
 // backwards, every later response is marched, and analogy_gave_up() says why.
 class IncrementalContactResponse : public WearContact {
  public:
-  // How a β ≠ 0 response under force control and a constant P takes in the coupling (above); other loads and
-  // β = 0 always solve their own cycle.
+  // How a β ≠ 0 response takes in the coupling (above); β = 0 always solves its own cycle.
   enum class Coupling { every_response, lagged };
   // The cycle stage's load (its plan) and datum.
   IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle,
@@ -289,8 +294,9 @@ class IncrementalContactResponse : public WearContact {
   long coupled_responses_ = 0, mirrored_responses_ = 0, lagged_responses_ = 0, analogy_responses_ = 0;
   double Q_top_ = 0.0;            // the tangential load at the top of the last response's cycle (N/m)
   std::string analogy_gave_up_;
-  // The lagged coupling (null analogy_: every response coupled).
-  std::unique_ptr<AnalogyContactResponse> analogy_;
+  // The lagged coupling's uncoupled cycle (null: every response coupled): the analogy's, or under a load history
+  // the marched one of β = 0.
+  std::unique_ptr<WearContact> analogy_;
   wear::CycleResponse uncoupled_;      // the analogy's response on the current w (its p warm-starts the next)
   wear::CycleResponse uncoupled_ref_;  // ... and on w_r
   wear::CycleResponse coupled_ref_;    // the coupled response on w_r (its stick zones)

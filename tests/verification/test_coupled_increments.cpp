@@ -44,16 +44,22 @@ struct Run {
   IncrementalResult r;
 };
 
-// The wear stage's coupled response on the unworn contact: the first loading and two cycles.
-Run run(int cells, IncrementalSlipOptions o) {
+// The wear stage's coupled response on the unworn contact: the first loading and two cycles; with `history`, the same
+// under a load history with P out of phase with Q (P from 70 to 130 N/mm while Q swings ±25 N/mm, as
+// examples/hertz_history_out_of_phase.json without its bulk stress), the first loading and two runs through it.
+Run run(int cells, IncrementalSlipOptions o, bool history = false) {
   Scene s = test::hertz_cycle(kP, kRatio, cells);
   s.specimen = kAluminium;
   Model m = make_model(s);
   NormalResult n = solve_normal(s, m);
   const NormalCoupling coupling{m.pair.beta(), m.g0};
-  const CyclicLoad load{s.P, s.Q_max(), *s.friction, 0.0};
+  CyclicLoad load{s.P, s.Q_max(), *s.friction, 0.0};
+  if (history)
+    load.history = {{0, 1e5, 2.5e4, 0}, {1, 7e4, 0, 0}, {2, 1e5, -2.5e4, 0}, {3, 1.3e5, 0, 0}, {4, 1e5, 2.5e4, 0}};
   o.cycles = 2;
-  IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve(n.state, load, nullptr, &coupling);
+  const IncrementalSlipSolver solver(*m.kernel, o);
+  IncrementalResult r = history ? solver.solve_history(n.state, load, m.g0, nullptr, &coupling)
+                                : solver.solve(n.state, load, nullptr, &coupling);
   return {std::move(m), std::move(n), std::move(r)};
 }
 
@@ -93,17 +99,22 @@ TEST_CASE("coupled increments: the predicted start reaches the same cycle in few
   CHECK(b.r.n_iterations < a.r.n_iterations);
 }
 
-TEST_CASE("coupled increments: a settling march of four increments leaves the same steady cycle") {
+TEST_CASE("coupled increments: a settling march of four increments leaves the same steady cycle, under a constant "
+          "amplitude and under a load history") {
   IncrementalSlipOptions settle;
   settle.settling_increments = 4;
-  const Run a = run(512, {});
-  const Run b = run(512, settle);
-  MESSAGE(fmt::format("increments: {} marching every cycle at 40, {} settling at 4", a.r.n_increments,
-                      b.r.n_increments));
-  // The first loading in one increment, the first cycle in four, the reported cycle in the scene's 40.
-  CHECK(a.r.n_increments == 10 + 40 + 40);
-  CHECK(b.r.n_increments == 1 + 4 + 40);
-  check_same_cycle(a, b);
+  for (const bool history : {false, true}) {
+    CAPTURE(history);
+    const Run a = run(512, {}, history);
+    const Run b = run(512, settle, history);
+    MESSAGE(fmt::format("{}: increments {} marching every cycle at 40, {} settling at 4",
+                        history ? "history" : "amplitude", a.r.n_increments, b.r.n_increments));
+    // The first loading in one increment, the first cycle in four (the history's four segments one each), the
+    // reported cycle in the scene's 40.
+    CHECK(a.r.n_increments == 10 + 40 + 40);
+    CHECK(b.r.n_increments == 1 + 4 + 40);
+    check_same_cycle(a, b);
+  }
 }
 
 TEST_CASE("coupled increments: settling_increments must be a multiple of 4") {

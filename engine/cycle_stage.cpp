@@ -248,6 +248,17 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
   }
   if ((scene.control == LoadControl::displacement || history) && !stage.result.slip_range.empty())
     stage.Q_max = stage.result.Q_peak;  // the peak Q reached
+  // Where P moves along the history, the same march at half the increments (a multiple of 4): the energy's error
+  // estimate (CycleStage::energy_half_increments).
+  const bool P_moves = history && std::any_of(load.history.begin(), load.history.end(),
+                                              [&](const HistoryPoint& pt) { return pt.P != load.history.front().P; });
+  IncrementalSlipOptions half = options;
+  half.increments_per_cycle = std::max(4, options.increments_per_cycle / 8 * 4);
+  if (P_moves && !stage.result.slip_range.empty() && half.increments_per_cycle < options.increments_per_cycle)
+    stage.energy_half_increments = IncrementalSlipSolver(*model.kernel, half)
+                                       .solve_history(normal.state, load, model.g0, &datum, &coupling)
+                                       .cycles.back()
+                                       .dissipated_energy;
   return stage;
 }
 

@@ -43,6 +43,10 @@ struct CycleStage {
   // The bulk stress at the top and the bottom (Pa): ±load.bulk_stress in phase with Q (or δ), and a history's
   // sigma_bulk where its Q is largest and smallest.
   double sigma_top = 0.0, sigma_bottom = 0.0;
+  // A load history whose P moves: the steady cycle's dissipated energy marched at half the increments (J/m). Where
+  // P moves within an increment the energy converges at first order in the increments (docs/METHODS.md, "Load
+  // histories"), so its change from half the increments estimates the error left at the scene's; warned past 1 %.
+  std::optional<double> energy_half_increments;
 };
 
 // The displacement datum's reference points (contact/reference_datum.hpp): below the centre of the contact under P

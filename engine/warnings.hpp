@@ -29,6 +29,9 @@ inline constexpr double kWearAgreement = 5e-3;
 // A worn profile zigzags where three consecutive second differences alternate in sign, each above this share of the
 // deepest wear (warnings.cpp, worn_zigzag).
 inline constexpr double kZigzagShare = 0.01;
+// A load history's dissipated energy may change by this share from half the increments to the scene's before a
+// warning (CycleStage::energy_half_increments: first order, so about the error left).
+inline constexpr double kHistoryEnergyShare = 0.01;
 
 // What the results of a completed run cannot be trusted for: under-resolved contact and slip zones, a closed form
 // missed by more than kClosedFormTolerance (Hertz, the punches, the Mindlin stick zone), a crack longer than the

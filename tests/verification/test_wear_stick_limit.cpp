@@ -12,6 +12,7 @@
 // "Known to fail"). The reference is the 2048-cell run's, to that spread.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -64,4 +65,26 @@ TEST_CASE("a smooth worn profile gives no zigzag warning: the Hertz wear case at
   const std::vector<Warning> warnings = result_warnings(s, r);
   CHECK(std::none_of(warnings.begin(), warnings.end(),
                      [](const Warning& warning) { return warning.code == "worn_profile_zigzag"; }));
+}
+
+TEST_CASE("under a load history the zigzag at the contact's edge is the increments', and more of them remove it") {
+  // examples/hertz_history_out_of_phase.json's history without its bulk stress, worn at 512 cells: at 40 increments
+  // a cycle the contact's edge sweeps over some three cells an increment as P moves, and the worn depth there
+  // zigzags; at 80 it does not (docs/METHODS.md, "Load histories").
+  for (const int increments : {40, 80}) {
+    CAPTURE(increments);
+    Scene s = test::hertz_wear(1e5, 0.5, 1e5, 512);
+    s.Q_ratio.reset();
+    s.history = {{0, 1e5, 2.5e4, 0}, {1, 7e4, 0, 0}, {2, 1e5, -2.5e4, 0}, {3, 1.3e5, 0, 0}, {4, 1e5, 2.5e4, 0}};
+    s.tangential->increments = increments;
+    const RunResult r = Simulation(s).run();
+    const std::vector<Warning> warnings = result_warnings(s, r);
+    const auto zigzag = std::find_if(warnings.begin(), warnings.end(),
+                                     [](const Warning& w) { return w.code == "worn_profile_zigzag"; });
+    CHECK((zigzag != warnings.end()) == (increments == 40));
+    if (zigzag != warnings.end()) {
+      MESSAGE(zigzag->message);
+      CHECK(zigzag->message.find("raise effects.tangential.increments (40 now") != std::string::npos);
+    }
+  }
 }

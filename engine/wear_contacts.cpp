@@ -450,7 +450,8 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   // Under a history s is the energy's equivalent e / (f p_ref), and p_ref's contact, that of the largest P, covers
   // every cell that touches in the cycle: a cell beyond it would touch only near that P and slip a share of what
   // its surfaces travel, which the travel would overstate (it made the steps of a history's run rejected the more,
-  // 23 → 37 of 113 at 256 cells, 32 → 76 of 139 at 512). Such cells enter by the stepper's own rule, as before.
+  // 23 → 37 of 113 at 256 cells, 32 → 76 of 139 at 512). Such cells enter by the stepper's own rule for cells that
+  // start to wear within a step (wear/implicit_stepper.hpp).
   if (!load_.history.empty()) {
     out.s_touching.clear();
     return;

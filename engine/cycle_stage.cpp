@@ -254,11 +254,13 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
                                               [&](const HistoryPoint& pt) { return pt.P != load.history.front().P; });
   IncrementalSlipOptions half = options;
   half.increments_per_cycle = std::max(4, options.increments_per_cycle / 8 * 4);
-  if (P_moves && !stage.result.slip_range.empty() && half.increments_per_cycle < options.increments_per_cycle)
+  if (P_moves && !stage.result.slip_range.empty() && half.increments_per_cycle < options.increments_per_cycle) {
+    stage.half_increments = half.increments_per_cycle;
     stage.energy_half_increments = IncrementalSlipSolver(*model.kernel, half)
                                        .solve_history(normal.state, load, model.g0, &datum, &coupling)
                                        .cycles.back()
                                        .dissipated_energy;
+  }
   return stage;
 }
 

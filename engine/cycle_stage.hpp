@@ -47,6 +47,7 @@ struct CycleStage {
   // P moves within an increment the energy converges at first order in the increments (docs/METHODS.md, "Load
   // histories"), so its change from half the increments estimates the error left at the scene's; warned past 1 %.
   std::optional<double> energy_half_increments;
+  int half_increments = 0;  // the increments per cycle of that march
 };
 
 // The displacement datum's reference points (contact/reference_datum.hpp): below the centre of the contact under P

@@ -44,13 +44,12 @@ void history_increments(const Scene& scene, const CycleStage& cycle, std::vector
   const double e = cycle.result.dissipated_energy, e_half = *cycle.energy_half_increments;
   const double share = std::abs(e - e_half) / e;
   if (!(share > kHistoryEnergyShare)) return;
-  const int m = scene.tangential ? scene.tangential->increments : TangentialEffect{}.increments;
   out.push_back({"history_increments",
                  fmt::format("the load history's dissipated energy, {:.4e} J/m per cycle at {} increments, is "
                              "{:.4e} at {}: {:.1f} % apart, and where P moves within the increments it converges at "
                              "first order, so about that much error is left{}; raise effects.tangential.increments "
                              "(docs/METHODS.md, \"Load histories\")",
-                             e, m, e_half, std::max(4, m / 8 * 4), 100.0 * share,
+                             e, scene.tangential->increments, e_half, cycle.half_increments, 100.0 * share,
                              scene.wear ? " (in the wear rate too, which the energy sets under a history)" : "")});
 }
 
@@ -230,29 +229,27 @@ void worn_zigzag(const Scene& scene, const RunResult& r, std::vector<Warning>& o
     if (count > worst) worst = count, at = rec.cycles, left = first, right = last;
   }
   if (worst == 0) return;
+  const std::string where = fmt::format("the worn depth zigzags from cell to cell ({} places, between x = {:.4g} and "
+                                        "{:.4g} m, at {:.4g} cycles): ",
+                                        worst, left, right, at);
   const bool history =
       !scene.history.empty() ||
       std::any_of(scene.blocks.begin(), scene.blocks.end(), [](const LoadBlock& b) { return !b.history.empty(); });
-  if (history) {
+  if (history)
     out.push_back({"worn_profile_zigzag",
-                   fmt::format("the worn depth zigzags from cell to cell ({} places, between x = {:.4g} and {:.4g} m, "
-                               "at {:.4g} cycles): under a load history the contact's edge sweeps over cells within "
-                               "an increment as P moves, and the energy each cell dissipates steps with it, so the "
-                               "depth and the pressure there are the increments', not a resolved scar; raise "
-                               "effects.tangential.increments ({} now; docs/METHODS.md, \"Load histories\"). Near "
-                               "the stick limit the cells beside the stick zone may zigzag too, which more increments "
-                               "do not remove (docs/METHODS.md, \"Known to fail\")",
-                               worst, left, right, at,
-                               scene.tangential ? scene.tangential->increments : TangentialEffect{}.increments)});
-    return;
-  }
-  out.push_back({"worn_profile_zigzag",
-                 fmt::format("the worn depth zigzags from cell to cell ({} places, between x = {:.4g} and {:.4g} m, "
-                             "at {:.4g} cycles): cells there switch between sticking and slipping from step to step "
-                             "and pits a cell wide open between cells that do not wear, so the depth, the pressure and "
-                             "the stick zones there are the grid's, not a resolved scar; more grid.cells do not remove "
-                             "it (docs/METHODS.md, \"Known to fail\")",
-                             worst, left, right, at)});
+                   where + fmt::format("under a load history the contact's edge sweeps over cells within an increment "
+                                       "as P moves, and the energy each cell dissipates steps with it, so the depth "
+                                       "and the pressure there are the increments', not a resolved scar; raise "
+                                       "effects.tangential.increments ({} now; docs/METHODS.md, \"Load histories\"). "
+                                       "Near the stick limit the cells beside the stick zone may zigzag too, which "
+                                       "more increments do not remove (docs/METHODS.md, \"Known to fail\")",
+                                       scene.tangential->increments)});
+  else
+    out.push_back({"worn_profile_zigzag",
+                   where + "cells there switch between sticking and slipping from step to step and pits a cell wide "
+                           "open between cells that do not wear, so the depth, the pressure and the stick zones there "
+                           "are the grid's, not a resolved scar; more grid.cells do not remove it (docs/METHODS.md, "
+                           "\"Known to fail\")"});
 }
 
 }  // namespace

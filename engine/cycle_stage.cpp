@@ -203,7 +203,43 @@ std::pair<double, double> reference_point(const Scene& scene, const NormalResult
   return {0.5 * (left + right), scene.reference_depth ? *scene.reference_depth : 5.0 * (right - left)};
 }
 
-CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal) {
+namespace {
+
+// Each history whose P moves, marched again at half the increments (a multiple of 4): the energy's error estimate
+// (CycleStage::history_energy). The scene's own (load.blocks' first block's) is the cycle the stage solved; a later
+// block's is marched at both counts on the unworn contact.
+void history_energies(const Scene& scene, const Model& model, const NormalResult& normal, CycleStage& stage) {
+  IncrementalSlipOptions options;
+  options.increments_per_cycle = scene.tangential->increments;
+  if (stage.plan.dissimilar()) options.cycles = 2;
+  IncrementalSlipOptions half = options;
+  half.increments_per_cycle = std::max(4, options.increments_per_cycle / 8 * 4);
+  if (half.increments_per_cycle >= options.increments_per_cycle) return;
+  const ReferenceDatum datum(model.grid, model.pair, stage.reference_x, stage.reference_depth);
+  const NormalCoupling coupling{stage.plan.beta, model.g0};
+  const auto march = [&](const IncrementalSlipOptions& o, const CyclicLoad& l) {
+    return IncrementalSlipSolver(*model.kernel, o)
+        .solve_history(normal.state, l, model.g0, &datum, &coupling)
+        .cycles.back()
+        .dissipated_energy;
+  };
+  const auto check = [&](const CyclicLoad& l, int block, const CycleResult* solved) {
+    const bool P_moves = std::any_of(l.history.begin(), l.history.end(),
+                                     [&](const HistoryPoint& pt) { return pt.P != l.history.front().P; });
+    if (!P_moves) return;
+    const double energy = solved ? solved->dissipated_energy : march(options, l);
+    if (!(energy > 0.0)) return;  // gross slip (reported without fields), or nothing slides
+    stage.history_energy.push_back({block, energy, march(half, l), half.increments_per_cycle});
+  };
+  const CyclicLoad& load = stage.plan.load;
+  if (!load.history.empty() && !stage.result.slip_range.empty())
+    check(load, scene.blocks.empty() ? -1 : 0, &stage.result);
+  for (std::size_t b = 1; b < scene.blocks.size(); ++b)
+    if (!scene.blocks[b].history.empty()) check(block_load(scene, model.pair, scene.blocks[b]), int(b), nullptr);
+}
+
+CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const CyclePlan& plan,
+                              const NormalResult& normal) {
   CycleStage stage;
   stage.plan = plan;
   stage.f = plan.load.f;
@@ -248,19 +284,14 @@ CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& 
   }
   if ((scene.control == LoadControl::displacement || history) && !stage.result.slip_range.empty())
     stage.Q_max = stage.result.Q_peak;  // the peak Q reached
-  // Where P moves along the history, the same march at half the increments (a multiple of 4): the energy's error
-  // estimate (CycleStage::energy_half_increments).
-  const bool P_moves = history && std::any_of(load.history.begin(), load.history.end(),
-                                              [&](const HistoryPoint& pt) { return pt.P != load.history.front().P; });
-  IncrementalSlipOptions half = options;
-  half.increments_per_cycle = std::max(4, options.increments_per_cycle / 8 * 4);
-  if (P_moves && !stage.result.slip_range.empty() && half.increments_per_cycle < options.increments_per_cycle) {
-    stage.half_increments = half.increments_per_cycle;
-    stage.energy_half_increments = IncrementalSlipSolver(*model.kernel, half)
-                                       .solve_history(normal.state, load, model.g0, &datum, &coupling)
-                                       .cycles.back()
-                                       .dissipated_energy;
-  }
+  return stage;
+}
+
+}  // namespace
+
+CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal) {
+  CycleStage stage = solve_steady_cycle(scene, model, plan, normal);
+  if (scene.tangential) history_energies(scene, model, normal, stage);
   return stage;
 }
 

@@ -43,11 +43,16 @@ struct CycleStage {
   // The bulk stress at the top and the bottom (Pa): ±load.bulk_stress in phase with Q (or δ), and a history's
   // sigma_bulk where its Q is largest and smallest.
   double sigma_top = 0.0, sigma_bottom = 0.0;
-  // A load history whose P moves: the steady cycle's dissipated energy marched at half the increments (J/m). Where
-  // P moves within an increment the energy converges at first order in the increments (docs/METHODS.md, "Load
-  // histories"), so its change from half the increments estimates the error left at the scene's; warned past 1 %.
-  std::optional<double> energy_half_increments;
-  int half_increments = 0;  // the increments per cycle of that march
+  // Each load history whose P moves (the scene's, or a block's of load.blocks), its steady cycle's dissipated energy
+  // marched at the scene's increments and at half of them (J/m). Where P moves within an increment the energy
+  // converges at first order in the increments (docs/METHODS.md, "Load histories"), so its change from half the
+  // increments estimates the error left at the scene's; warned past 1 %. A block's is on the unworn contact.
+  struct HistoryEnergy {
+    int block = -1;  // the block of load.blocks; -1 for the scene's own history
+    double energy = 0.0, energy_half = 0.0;
+    int half_increments = 0;  // the increments per cycle of the second march
+  };
+  std::vector<HistoryEnergy> history_energy;
 };
 
 // The displacement datum's reference points (contact/reference_datum.hpp): below the centre of the contact under P

@@ -160,6 +160,13 @@ CyclicLoad cyclic_load(const Scene& scene, const ElasticPair& pair) {
   return load;
 }
 
+CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlock& b) {
+  Scene one = scene;
+  one.Q_amplitude = b.Q_amplitude, one.Q_ratio = b.Q_ratio, one.delta = b.delta, one.history = b.history;
+  one.control = b.delta ? LoadControl::displacement : LoadControl::force;
+  return cyclic_load(one, pair);
+}
+
 CyclePlan plan_cycle(const Scene& scene, const ElasticPair& pair) {
   CyclePlan plan;
   const bool displacement = scene.control == LoadControl::displacement;

@@ -51,6 +51,8 @@ struct CyclePlan {
 // The cyclic load of a scene with friction: P, Q_max, f, δ, and the bulk strain of the bulk stress (each history
 // point's too).
 CyclicLoad cyclic_load(const Scene& scene, const ElasticPair& pair);
+// The cyclic load of block b of load.blocks: the scene's, with the block's Q, δ or history in place of its own.
+CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlock& b);
 
 // The plan of a scene with a tangential effect. Throws UnsupportedError where the route asked for cannot run the
 // load or the bodies (the scene's checks refuse these too).

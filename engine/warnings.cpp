@@ -37,20 +37,24 @@ void closed_form_missed(const NormalResult& n, std::vector<Warning>& out) {
                                100.0 * kClosedFormTolerance)});
 }
 
-// A load history whose P moves within the increments: its dissipated energy converges at first order in them, and
-// its change from half the increments is about the error left (CycleStage::energy_half_increments).
+// A load history whose P moves within the increments (the scene's, or a block's): its dissipated energy converges
+// at first order in them, and its change from half the increments is about the error left
+// (CycleStage::history_energy).
 void history_increments(const Scene& scene, const CycleStage& cycle, std::vector<Warning>& out) {
-  if (!cycle.energy_half_increments) return;
-  const double e = cycle.result.dissipated_energy, e_half = *cycle.energy_half_increments;
-  const double share = std::abs(e - e_half) / e;
-  if (!(share > kHistoryEnergyShare)) return;
-  out.push_back({"history_increments",
-                 fmt::format("the load history's dissipated energy, {:.4e} J/m per cycle at {} increments, is "
-                             "{:.4e} at {}: {:.1f} % apart, and where P moves within the increments it converges at "
-                             "first order, so about that much error is left{}; raise effects.tangential.increments "
-                             "(docs/METHODS.md, \"Load histories\")",
-                             e, scene.tangential->increments, e_half, cycle.half_increments, 100.0 * share,
-                             scene.wear ? " (in the wear rate too, which the energy sets under a history)" : "")});
+  for (const CycleStage::HistoryEnergy& h : cycle.history_energy) {
+    const double share = std::abs(h.energy - h.energy_half) / h.energy;
+    if (!(share > kHistoryEnergyShare)) continue;
+    const std::string which =
+        h.block < 0 ? "the load history's" : fmt::format("load.blocks[{}]'s history's", h.block);
+    out.push_back({"history_increments",
+                   fmt::format("{} dissipated energy, {:.4e} J/m per cycle at {} increments, is {:.4e} at {}{}: "
+                               "{:.1f} % apart, and where P moves within the increments it converges at first order, "
+                               "so about that much error is left{}; raise effects.tangential.increments "
+                               "(docs/METHODS.md, \"Load histories\")",
+                               which, h.energy, scene.tangential->increments, h.energy_half, h.half_increments,
+                               h.block > 0 ? " (on the unworn contact)" : "", 100.0 * share,
+                               scene.wear ? " (in the wear rate too, which the energy sets under a history)" : "")});
+  }
 }
 
 // Each contact zone's slip zones at the top of the cycle: between its ends and the stick zones inside it.

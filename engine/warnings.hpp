@@ -30,7 +30,7 @@ inline constexpr double kWearAgreement = 5e-3;
 // deepest wear (warnings.cpp, worn_zigzag).
 inline constexpr double kZigzagShare = 0.01;
 // A load history's dissipated energy may change by this share from half the increments to the scene's before a
-// warning (CycleStage::energy_half_increments: first order, so about the error left).
+// warning (CycleStage::history_energy: first order, so about the error left).
 inline constexpr double kHistoryEnergyShare = 0.01;
 
 // What the results of a completed run cannot be trusted for: under-resolved contact and slip zones, a closed form

@@ -749,14 +749,6 @@ void WearRun::drive_frames(double rate_max) {
 
 namespace {
 
-// The cyclic load of block b of load.blocks: the scene's, with the block's Q, δ or history in place of its own.
-CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlock& b) {
-  Scene one = scene;
-  one.Q_amplitude = b.Q_amplitude, one.Q_ratio = b.Q_ratio, one.delta = b.delta, one.history = b.history;
-  one.control = b.delta ? LoadControl::displacement : LoadControl::force;
-  return cyclic_load(one, pair);
-}
-
 // The first response on the worn state w: the fastest wear max c p s (m/cycle), which sets the first step, and the
 // explicit stability limit 1.5 Δx/(E* c s_max) (cycles; 0 when nothing slips).
 struct FirstResponse {

@@ -20,6 +20,8 @@
 
 #include "contact/closed_form.hpp"
 #include "contact/incremental_slip.hpp"
+#include "engine/cycle_stage.hpp"
+#include "engine/normal_stage.hpp"
 #include "engine/simulation.hpp"
 #include "engine/warnings.hpp"
 
@@ -148,7 +150,7 @@ TEST_CASE("load history: with P out of phase the energy converges at first order
   // Where P moves within an increment a sliding cell's bound moves with it, and q Δw with the end's q is first order
   // (docs/METHODS.md, "Load histories"): the differences from 40 to 320 increments halve (measured at 512 cells:
   // observed orders 0.90 and 0.95), so the change from half the increments is about the error left, which the cycle
-  // stage measures (CycleStage::energy_half_increments) and the run warns of past 1 %: at 40 increments (3.2 %), not
+  // stage measures (CycleStage::history_energy) and the run warns of past 1 %: at 40 increments (3.2 %), not
   // at 320 (0.49 %).
   const double P = 1e5, Q = 0.5 * test::kHertzF * P;
   Scene s = test::hertz_cycle(P, 0.0, 512);
@@ -159,8 +161,10 @@ TEST_CASE("load history: with P out of phase the energy converges at first order
     s.tangential->increments = increments;
     const RunResult r = Simulation(s).run();
     REQUIRE(r.cycle);
-    REQUIRE(r.cycle->energy_half_increments);
-    const double e_half = *r.cycle->energy_half_increments;
+    REQUIRE(r.cycle->history_energy.size() == 1);
+    CHECK(r.cycle->history_energy[0].block == -1);
+    CHECK(r.cycle->history_energy[0].energy == r.cycle->result.dissipated_energy);
+    const double e_half = r.cycle->history_energy[0].energy_half;
     e.push_back(r.cycle->result.dissipated_energy);
     const std::vector<Warning> warnings = result_warnings(s, r);
     const bool warned = std::any_of(warnings.begin(), warnings.end(),
@@ -180,6 +184,45 @@ TEST_CASE("load history: with P out of phase the energy converges at first order
   CHECK(e[0] < e[1]);
   CHECK(e[1] < e[2]);
   CHECK(e[2] < e[3]);
+}
+
+TEST_CASE("load history: a history block of load.blocks is checked as the scene's own history is, and named") {
+  // A constant block, then the out-of-phase history of the test above as a block of its own: the cycle stage solves
+  // the first block, so it marches the history block at the scene's increments and at half of them (on the unworn
+  // contact), and that energy is the one the history gives as the scene's own load.history on the same grid, to
+  // round-off (the same march). The warning names the block; at 160 increments (0.5 % from 80 here) there is none.
+  const double P = 1e5, Q = 0.5 * test::kHertzF * P;
+  const std::vector<std::array<double, 4>> history = {
+      {0.0, P, Q, 0.0}, {1.0, 0.7 * P, 0.0, 0.0}, {2.0, P, -Q, 0.0}, {3.0, 1.3 * P, 0.0, 0.0}, {4.0, P, Q, 0.0}};
+  Scene own = test::hertz_cycle(P, 0.0, 256);
+  own.Q_ratio.reset();
+  own.history = history;
+  Scene blocks = test::hertz_cycle(P, 0.3, 256);
+  blocks.blocks = {LoadBlock{std::nullopt, 0.3, std::nullopt, {}, 100.0},
+                   LoadBlock{std::nullopt, std::nullopt, std::nullopt, history, 100.0}};
+  own.window = blocks.window = std::pair{-2e-4, 2e-4};  // one grid (a window chosen for P alone would differ)
+  for (const int increments : {40, 160}) {
+    own.tangential->increments = blocks.tangential->increments = increments;
+    CAPTURE(increments);
+    const Setup setup = make_setup(blocks);
+    const NormalResult normal = solve_normal(blocks, setup.model);
+    RunResult r;
+    r.normal = normal;
+    r.cycle = solve_cycle(blocks, setup.model, *setup.cycle, normal);
+    REQUIRE(r.cycle->history_energy.size() == 1);
+    const CycleStage::HistoryEnergy& h = r.cycle->history_energy[0];
+    CHECK(h.block == 1);
+    CHECK(h.half_increments == increments / 2);
+    const RunResult alone = Simulation(own).run();
+    REQUIRE(alone.cycle->history_energy.size() == 1);
+    CHECK(h.energy == test::rel(alone.cycle->history_energy[0].energy, kSame));
+    CHECK(h.energy_half == test::rel(alone.cycle->history_energy[0].energy_half, kSame));
+    const std::vector<Warning> warnings = result_warnings(blocks, r);
+    const auto warned = std::find_if(warnings.begin(), warnings.end(),
+                                     [](const Warning& w) { return w.code == "history_increments"; });
+    CHECK((warned != warnings.end()) == (increments == 40));
+    if (warned != warnings.end()) CHECK(warned->message.find("load.blocks[1]") != std::string::npos);
+  }
 }
 
 TEST_CASE("load history: a history that reaches |Q| >= fP is gross slip, reported without fields") {

@@ -25,13 +25,16 @@ FramePositions frame_positions(double U, double h) {
   return f;
 }
 
-BodyFrames::BodyFrames(const Model& model, double P, double c_pad, double c_specimen, Respond respond,
+BodyFrames::BodyFrames(const Model& model, double P, double f, double c_pad, double c_specimen, Respond respond,
                        Amplitude amplitude)
     : model_(model),
       n_(model.grid.n),
       P_(P),
       c_pad_(c_pad),
       c_spec_(c_specimen),
+      coupling_(model.pair.A() * model.pair.beta() * f),
+      directions_(coupling_ != 0.0 ? 2 : 1),
+      coupling_kernel_(model.grid),
       respond_(std::move(respond)),
       amplitude_(std::move(amplitude)),
       solver_(*model.kernel, [&model] {
@@ -113,22 +116,44 @@ void BodyFrames::gap_at(std::span<const double> z, std::size_t k, std::span<cons
   }
 }
 
+void BodyFrames::add_coupling(std::size_t m, std::span<const double> p, std::vector<double>& out) const {
+  std::vector<double> u(static_cast<std::size_t>(n_));
+  coupling_kernel_.apply(p, u, -sign(m) * coupling_);
+  for (int i = 0; i < n_; ++i) out[std::size_t(i)] += u[std::size_t(i)];
+}
+
 void BodyFrames::pressures(std::span<const double> z, std::vector<std::vector<double>>& p) {
-  const std::size_t K = positions_.shift.size();
-  p.resize(K);
-  std::vector<double> g;
+  const std::size_t states = this->states();
+  p.resize(states);
+  std::vector<double> g, extra(static_cast<std::size_t>(n_));
   ContactState state;
-  for (std::size_t k = 0; k < K; ++k) {
-    gap_at(z, k, {}, g);
-    state.p = p[k];
-    const SolveSummary s = solver_.solve(g, P_, state);
-    ++solves_;
-    cg_iterations_ += s.iterations;
-    if (!s.converged())
-      throw ConvergenceError(fmt::format("wear: the normal solve at a position of the stroke stopped ({}) with "
-                                         "residual {:.3g}",
-                                         to_string(s.termination), s.residual));
-    p[k] = state.p;
+  for (std::size_t m = 0; m < states; ++m) {
+    // β ≠ 0: sweeps, the sliding shear's gap from the last pressure (none where D = 1: one solve).
+    for (int sweep = 0;; ++sweep) {
+      std::fill(extra.begin(), extra.end(), 0.0);
+      if (directions_ > 1) add_coupling(m, p[m], extra);
+      gap_at(z, position(m), directions_ > 1 ? std::span<const double>(extra) : std::span<const double>(), g);
+      state.p = p[m];
+      const SolveSummary s = solver_.solve(g, P_, state);
+      ++solves_;
+      cg_iterations_ += s.iterations;
+      if (!s.converged())
+        throw ConvergenceError(fmt::format("wear: the normal solve at a position of the stroke stopped ({}) with "
+                                           "residual {:.3g}",
+                                           to_string(s.termination), s.residual));
+      double change = 0.0, largest = 0.0;
+      for (int i = 0; i < n_; ++i) {
+        const std::size_t a = std::size_t(i);
+        change = std::max(change, std::abs(state.p[a] - (a < p[m].size() ? p[m][a] : 0.0)));
+        largest = std::max(largest, state.p[a]);
+      }
+      p[m] = state.p;
+      if (directions_ == 1 || change <= kFrameSweepTolerance * largest) break;
+      if (sweep + 1 == kFrameSweeps)
+        throw ConvergenceError(fmt::format("wear: the sliding pressure at a position of the stroke did not settle "
+                                           "under the shear's coupling in {} sweeps (change {:.3g} of its largest)",
+                                           kFrameSweeps, change / largest));
+    }
   }
 }
 
@@ -136,21 +161,21 @@ void BodyFrames::rates(const std::vector<std::vector<double>>& p, std::vector<do
   dz.assign(std::size_t(2 * n_), 0.0);
   const std::span<double> spec = std::span<double>(dz).subspan(std::size_t(n_));
   deposit_.resize(std::size_t(n_));
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const double nu = positions_.weight[k];
+  for (std::size_t m = 0; m < p.size(); ++m) {
+    const double nu = positions_.weight[position(m)] / double(directions_);
     for (int i = 0; i < n_; ++i) {
       const std::size_t a = std::size_t(i);
-      const double pi = std::max(0.0, p[k][a]);
+      const double pi = std::max(0.0, p[m][a]);
       dz[a] += c_pad_ * nu * pi * s_[a];
       deposit_[a] = c_spec_ * nu * pi * s_[a];
     }
-    deposit(deposit_, k, spec);
+    deposit(deposit_, position(m), spec);
   }
 }
 
 bool BodyFrames::euler(std::span<const double> z, double dN, std::vector<std::vector<double>>& p,
                        std::vector<double>& out) {
-  const std::size_t K = positions_.shift.size();
+  const std::size_t K = states();
   const std::size_t n = std::size_t(n_);
   const Eigen::Index size = Eigen::Index(K * n);
   std::vector<double> d(n), dz, extra(n), g;
@@ -169,11 +194,13 @@ bool BodyFrames::euler(std::span<const double> z, double dN, std::vector<std::ve
     rates(p, dz);
     double change = 0.0, largest = 0.0;
     for (std::size_t k = 0; k < K; ++k) {
-      // ΔN [R_pad + S_k R_spec] − D p_k at the iterate: what the solve's own shift does not carry.
+      // ΔN [R_pad + S_k R_spec] − D p_k at the iterate: what the solve's own shift does not carry; and for β ≠ 0
+      // the sliding shear's gap at the iterate.
       std::fill(extra.begin(), extra.end(), 0.0);
-      read(std::span<const double>(dz).subspan(n), k, extra);
+      read(std::span<const double>(dz).subspan(n), position(k), extra);
       for (std::size_t i = 0; i < n; ++i) extra[i] = dN * (extra[i] + dz[i]) - d[i] * p[k][i];
-      gap_at(z, k, extra, g);
+      if (directions_ > 1) add_coupling(k, p[k], extra);
+      gap_at(z, position(k), extra, g);
       state.p = p[k];
       const SolveSummary s = solver_.solve(g, P_, state, d);
       ++solves_;
@@ -226,7 +253,7 @@ controlled_step_result FramesWearStepper::try_step(std::reference_wrapper<BodyFr
   } else {
     frames.lag(response_, amplitude_);
   }
-  const std::size_t K = frames.positions().shift.size();
+  const std::size_t K = frames.states();
   if (p_start_.size() != K) {
     p_start_.assign(K, response_.p);
     frames.pressures(z, p_start_);
@@ -249,7 +276,7 @@ controlled_step_result FramesWearStepper::try_step(std::reference_wrapper<BodyFr
     frames.respond(z_half, r);
     ++stats_.responses;
     std::vector<std::vector<double>> p_mid = p_half;
-    if (p_mid.size() != frames.positions().shift.size()) p_mid.assign(frames.positions().shift.size(), r.p);
+    if (p_mid.size() != frames.states()) p_mid.assign(frames.states(), r.p);
     else
       for (std::size_t k = 0; k < K; ++k)
         for (std::size_t i = 0; i < p_mid[k].size(); ++i)
@@ -315,7 +342,7 @@ controlled_step_result FramesCycleByCycle::try_step(std::reference_wrapper<BodyF
   wear::CycleResponse r;
   frames.respond(z, r);
   ++responses;
-  if (p_.size() != frames.positions().shift.size()) p_.assign(frames.positions().shift.size(), r.p);
+  if (p_.size() != frames.states()) p_.assign(frames.states(), r.p);
   frames.pressures(z, p_);
   std::vector<double> dz;
   frames.rates(p_, dz);

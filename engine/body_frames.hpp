@@ -5,7 +5,13 @@
 // two profiles, z = [w_pad; w_spec]: w_pad(x) at the pad's points x (the grid), w_spec(X) at the specimen's points X
 // (the same grid: at mid-stroke X = x). With the pad displaced by u relative to the specimen the gap at pad point x is
 //     g_u(x) = g0(x) + w_pad(x) + w_spec(x + u),
-// and its pressure p_u(x) is the normal solution under P for that gap (similar bodies: the shear does not move it).
+// and its pressure p_u(x) is the normal solution under P for that gap. For similar bodies the shear does not move
+// it. For dissimilar ones (Dundurs β ≠ 0) the sliding shear q = σ f p (σ = ±1, the direction the pad slides) moves
+// the pressure through the coupling of contact/coupling_kernel.hpp, g = g0 + K p − A β S q − δ: each position has a
+// pressure p_u^σ for each direction, the normal solution for the gap g_u − σ A β f S p_u^σ (the frictional sliding
+// contact of dissimilar bodies, Hills, Nowell and Sackfield 1993, §2.5 with q = ±f p), leaning toward one end of the
+// contact when the pad slides one way and toward the other on the way back. The pad passes every position once
+// each way, so the means below are over both directions, ⟨p_u⟩ = ½ (p_u^+ + p_u^−).
 // Over a cycle the relative position runs over [−U, U] twice each way, uniformly in distance, so with the slip
 // travelled s(x) per cycle (4U plus the elastic part, the cycle's response at mid-stroke) Archard's law gives
 //     dw_pad/dN (x) = c_pad s(x) ⟨p_u(x)⟩,      dw_spec/dN (X) = c_spec ⟨(p_u s)(X − u)⟩,
@@ -19,6 +25,11 @@
 // 5e-4 and 17 positions to 1e-4; but the pressure, at 9 positions, rippled by about 5 % at the positions' spacing
 // (each position's pressure has its edge where that position's share of the specimen's scar ends, and the pad sums
 // them), much less at 17, hence 17 (twice the time).
+//
+// For β ≠ 0 each p_u^σ is found by sweeps, the coupling term from the last pressure, which contract by about f |β|
+// (pressures(): to kFrameSweepTolerance), and within the step below as part of its passes (the coupling term at
+// the iterate, so that the mixing converges both at once). s is then the slip travelled, not the energy's equivalent
+// (IncrementalContactResponse::give_slip_travelled), since the pressures that weigh it are these.
 //
 // The step (backward Euler in the pressures, with the slip s lagged at the step's start as the shared profile's
 // contact-implicit step lags it, wear/implicit_stepper.hpp): the end-of-step pressures p_k solve
@@ -54,6 +65,7 @@
 #include <boost/numeric/odeint/stepper/stepper_categories.hpp>
 #include <nlohmann/json.hpp>
 
+#include "contact/coupling_kernel.hpp"
 #include "contact/normal_solver.hpp"
 #include "engine/setup.hpp"
 #include "wear/contact_response.hpp"
@@ -64,6 +76,8 @@ inline constexpr int kFrameIntervals = 8;                 // M's cap: 17 positio
 inline constexpr int kFramePasses = 40;                   // passes of the step's coupling between positions
 inline constexpr double kFramePassTolerance = 1e-3;       // converged when one changes p by less (relative to max p)
 inline constexpr int kFrameMemory = 6;                    // Anderson's mixing: the differences it fits
+inline constexpr double kFrameSweepTolerance = 1e-10;     // β ≠ 0: a position's sweeps stop when p changes less
+inline constexpr int kFrameSweeps = 60;                   // (relative to max p), in at most this many
 
 // The stroke seen by the frames: positions u_k (in cells, fractional) and their trapezoid weights (sum 1).
 struct FramePositions {
@@ -75,16 +89,19 @@ struct FramePositions {
 };
 FramePositions frame_positions(double U, double h);
 
-// The two bodies' wear in their own frames: pressures at every position, rates, and the implicit step. The cycle's
-// response at mid-stroke (the slip s and the sliding amplitude U) comes from `respond`, called with the gap's wear
-// at mid-stroke w_pad + w_spec.
+// The two bodies' wear in their own frames: pressures at every position (and each sliding direction, for β ≠ 0),
+// rates, and the implicit step. The cycle's response at mid-stroke (the slip s and the sliding amplitude U) comes
+// from `respond`, called with the gap's wear at mid-stroke w_pad + w_spec. The pressures are indexed by state
+// m = k D + d: position k, direction d of D (1 for similar bodies; 2 for β ≠ 0, σ = +1 then −1).
 class BodyFrames {
  public:
   // respond(w, out) answers the steady cycle on the profile worn by w (the wear stage's contact); U(out) its
   // sliding amplitude (m).
   using Respond = std::function<void(std::span<const double>, wear::CycleResponse&)>;
   using Amplitude = std::function<double()>;
-  BodyFrames(const Model& model, double P, double c_pad, double c_specimen, Respond respond, Amplitude amplitude);
+  // f: the friction coefficient, which sets the sliding shear ±f p (used where the pair's β ≠ 0).
+  BodyFrames(const Model& model, double P, double f, double c_pad, double c_specimen, Respond respond,
+             Amplitude amplitude);
 
   // The gap's wear at mid-stroke, w_pad + w_spec, of z = [w_pad; w_spec].
   std::vector<double> mid_stroke(std::span<const double> z) const;
@@ -92,7 +109,7 @@ class BodyFrames {
   // amplitude U (m). lag() sets them again from a response and its U.
   double respond(std::span<const double> z, wear::CycleResponse& out);
   void lag(const wear::CycleResponse& r, double U);
-  // The pressures p_k on z at the positions of the last respond() (warm-started from p), and dz/dN from them.
+  // The pressures p_m on z at the states of the last respond() (warm-started from p), and dz/dN from them.
   void pressures(std::span<const double> z, std::vector<std::vector<double>>& p);
   void rates(const std::vector<std::vector<double>>& p, std::vector<double>& dz) const;
   // One backward-Euler step of ΔN from z at the positions and slip of the last respond(); p: the start's pressures
@@ -100,6 +117,8 @@ class BodyFrames {
   bool euler(std::span<const double> z, double dN, std::vector<std::vector<double>>& p, std::vector<double>& out);
 
   const FramePositions& positions() const { return positions_; }
+  int directions() const { return directions_; }  // D: 1, or 2 where the shear moves the pressure (β ≠ 0)
+  std::size_t states() const { return positions_.shift.size() * std::size_t(directions_); }
   long solves() const { return solves_; }
   long cg_iterations() const { return cg_iterations_; }  // over the solves
   long iterations() const { return iterations_; }  // passes over the positions, over all steps
@@ -118,10 +137,18 @@ class BodyFrames {
   // S_k v: the specimen's v read at the pad's cells, position k; and its transpose, added to out.
   void read(std::span<const double> v, std::size_t k, std::vector<double>& out) const;
   void deposit(std::span<const double> v, std::size_t k, std::span<double> out) const;
+  // State m's position and the sign σ of its sliding shear σ f p (0 where D = 1).
+  std::size_t position(std::size_t m) const { return m / std::size_t(directions_); }
+  double sign(std::size_t m) const { return directions_ == 1 ? 0.0 : (m % 2 == 0 ? 1.0 : -1.0); }
+  // out += the gap the sliding shear of state m adds on its pressure p: −σ A β f S p.
+  void add_coupling(std::size_t m, std::span<const double> p, std::vector<double>& out) const;
 
   const Model& model_;
   int n_;
   double P_, c_pad_, c_spec_;
+  double coupling_;  // A β f (m/Pa per unit of S)
+  int directions_;
+  CouplingKernel coupling_kernel_;
   Respond respond_;
   Amplitude amplitude_;
   NormalSolver solver_;

@@ -168,9 +168,11 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
     // In its own frame each body's scar has its own depth and extent (gross slip): the one line above cannot say both.
     if (w.contains("bodies") && w["bodies"]["frames"] == "own") {
       const auto& b = w["bodies"];
-      std::cout << fmt::format("  each body in its own frame ({} positions over the stroke): pad {:.4e} m deep over "
+      std::cout << fmt::format("  each body in its own frame ({} positions over the stroke{}): pad {:.4e} m deep over "
                                "[{:.6e}, {:.6e}] m, specimen {:.4e} m deep over [{:.6e}, {:.6e}] m\n",
-                               b["positions"].get<int>(), v(b["pad"]["max_depth"]), v(b["pad"]["extent"][0]),
+                               b["positions"].get<int>(),
+                               b["directions"].get<int>() == 2 ? ", each way: the shear moves the pressure" : "",
+                               v(b["pad"]["max_depth"]), v(b["pad"]["extent"][0]),
                                v(b["pad"]["extent"][1]), v(b["specimen"]["max_depth"]), v(b["specimen"]["extent"][0]),
                                v(b["specimen"]["extent"][1]));
     }

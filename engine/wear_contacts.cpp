@@ -425,8 +425,9 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   out.p = ref.p;
   const double f = *scene_.friction;
   // The slip the stepper's rate c p s needs: the slip travelled where the pressure is that of P (β = 0, constant P),
-  // otherwise the energy's equivalent s = e / (f p_ref) of the header (zero where p_ref = 0).
-  const bool energy = !load_.history.empty() || beta_ != 0.0;
+  // otherwise the energy's equivalent s = e / (f p_ref) of the header (zero where p_ref = 0); the slip travelled
+  // when the caller weighs it by its own pressures (give_slip_travelled()).
+  const bool energy = (!load_.history.empty() || beta_ != 0.0) && !slip_travelled_;
   out.s.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
     if (!(ref.p[i] > 0.0)) continue;
@@ -444,6 +445,17 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   // the cycle moved its surfaces relative to each other (CycleResult::slip_if_touching), as the analogy's 4 f (g* − g)
   // says for similar bodies (AnalogyContactResponse, which says why the step needs it).
   if (cycle_.regime == Regime::gross_slip) {
+    // With β ≠ 0 the pressure leans one way at the top and the other at the bottom, so a cell at the contact's end
+    // may touch for part of the stroke and travel that part (half the slip, at the end cells). A caller that weighs
+    // the slip by pressures of its own (give_slip_travelled) needs what it travels on touching: the slip continued
+    // from the cells loaded at both ends of the cycle.
+    if (slip_travelled_ && beta_ != 0.0 && r.p_top.size() == std::size_t(n) && r.p_bottom.size() == std::size_t(n)) {
+      std::vector<double> throughout(std::size_t(n), 0.0);
+      for (int i = 0; i < n; ++i)
+        if (ref.p[i] > 0.0 && r.p_top[i] > 0.0 && r.p_bottom[i] > 0.0) throughout[i] = 1.0;
+      out.s_touching = continued_over_gaps(throughout, out.s);
+      return;
+    }
     out.s_touching = continued_over_gaps(ref.p, out.s);
     return;
   }

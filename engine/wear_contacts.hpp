@@ -263,6 +263,10 @@ class IncrementalContactResponse : public WearContact {
   const std::string& analogy_gave_up() const { return analogy_gave_up_; }
   // Dundurs β of the pair: the cycle is coupled where it is not 0.
   double beta() const { return beta_; }
+  // Have the responses give as s the slip travelled per cycle where β ≠ 0 too, not the energy's equivalent
+  // e / (f p_ref): for a caller that weighs the slip by pressures of its own (the bodies' frames in gross slip,
+  // engine/body_frames.hpp, which solve the coupled pressure at each position of the stroke).
+  void give_slip_travelled() { slip_travelled_ = true; }
   nlohmann::json save() const override;
   void restore(const nlohmann::json& j) override;
 
@@ -287,6 +291,7 @@ class IncrementalContactResponse : public WearContact {
   ReferenceDatum datum_;
   CyclicLoad load_;
   double beta_ = 0.0;  // Dundurs β of the pair (0: similar bodies, uncoupled)
+  bool slip_travelled_ = false;  // give_slip_travelled()
   ContactState normal_;     // under load.P: where the cycle's first loading starts
   ContactState reference_;  // under P_ref_ when it is not load.P (a history): p_ref
   CycleResult cycle_;

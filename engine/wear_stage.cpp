@@ -743,6 +743,7 @@ void WearRun::drive_frames(double rate_max) {
   stage_.mean_iterations_implicit = double(frames.cg_iterations()) / double(std::max(1L, frames.solves()));
   stage_.frame_iterations = frames.iterations();
   stage_.frame_positions = int(frames.positions().shift.size());
+  stage_.frame_directions = frames.directions();
 }
 
 }  // namespace
@@ -925,7 +926,7 @@ void scars(const Model& model, const WearEffect& effect, WearStage& stage) {
 bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleStage& cycle) {
   const CycleResult& c = cycle.result;
   return scene.wear && c.regime == Regime::gross_slip && scene.wear->pad_fraction < 1.0 &&
-         c.sliding_amplitude > 0.5 * model.grid.h() && model.pair.beta() == 0.0 && scene.blocks.empty() &&
+         c.sliding_amplitude > 0.5 * model.grid.h() && scene.blocks.empty() &&
          scene.wear->stepper != WearStepper::explicit_capped;
 }
 
@@ -952,8 +953,9 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   auto* incremental = dynamic_cast<IncrementalContactResponse*>(contact.get());
   if (incremental && first.rate_max > 0.0 && bodies_in_own_frames(scene, model, cycle)) {
     const double c = stage.rate_coefficient, pad = effect.pad_fraction;
+    incremental->give_slip_travelled();  // the frames weigh it by their own pressures
     BodyFrames frames(
-        model, scene.P, c * pad, c * (1.0 - pad),
+        model, scene.P, *scene.friction, c * pad, c * (1.0 - pad),
         [incremental](std::span<const double> w, wear::CycleResponse& out) { incremental->respond(w, out); },
         [incremental] { return incremental->last_cycle().sliding_amplitude; });
     WearRun run(scene, model, control, *contact, stage, frames);
@@ -1068,6 +1070,7 @@ nlohmann::json summarise_wear(const Scene& scene, const WearStage& w) {
   };
   out["bodies"] = {{"frames", w.frame_positions > 0 ? "own" : "shared"},
                    {"positions", w.frame_positions},
+                   {"directions", w.frame_directions},
                    {"pad", body(w.pad)},
                    {"specimen", body(w.specimen)}};
   if (w.frame_positions > 0) out["frame_iterations"] = w.frame_iterations;

@@ -98,8 +98,10 @@ struct WearStage {
   double explicit_max_step = 0.0;   // stepper "explicit": the longest accepted step (cycles), ≤ the cap
   int steps = 0, rejected_steps = 0, implicit_solves = 0, responses = 0;
   // Gross slip: each body's wear in its own frame (engine/body_frames.hpp), at this many positions over the stroke;
-  // 0 where the bodies share one profile. The fixed point's passes, over the steps' Euler solutions.
-  int frame_positions = 0;
+  // 0 where the bodies share one profile; and the sliding directions solved at each (2 for dissimilar bodies, whose
+  // shear moves the pressure one way and the other, else 1). The fixed point's passes, over the steps' Euler
+  // solutions.
+  int frame_positions = 0, frame_directions = 0;
   long frame_iterations = 0;
   // Dissimilar bodies (β ≠ 0) by the incremental route: the run's cycle responses, those that solved the coupled
   // cycle (and of them, those that marched half of it and mirrored the rest) and those that took the lagged
@@ -176,9 +178,9 @@ WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleSt
 std::string cycle_by_cycle_problem(double stability_limit);
 
 // Whether the run tracks each body's wear in its own frame (engine/body_frames.hpp): gross slip (the sliding
-// amplitude over half a cell) with the specimen wearing (pad_fraction < 1), similar bodies (for β ≠ 0 the pressure
-// moves with the shear through the stroke, which the frames do not model), no load.blocks, and the stepper
-// "implicit" or "cycle_by_cycle". Elsewhere both bodies share one profile in the pad's frame, split by pad_fraction,
+// amplitude over half a cell) with the specimen wearing (pad_fraction < 1), similar or dissimilar bodies (for β ≠ 0
+// each position's pressure is solved for each sliding direction), no load.blocks, and the stepper "implicit" or
+// "cycle_by_cycle". Elsewhere both bodies share one profile in the pad's frame, split by pad_fraction,
 // and in gross slip the warning gross_slip_shared_scar says so.
 bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleStage& cycle);
 

@@ -136,6 +136,12 @@ TEST_CASE("gross-slip wear says the specimen's scar is the shared profile's wher
   CHECK(warning_codes(gross + "0.5}}}").empty());
   // Only the pad wears: its frame is the one computed.
   CHECK(warning_codes(gross + "1.0}}}").empty());
+  // Dissimilar bodies (a titanium specimen) are tracked in their own frames too, each position's pressure solved
+  // for both sliding directions.
+  std::string dissimilar = gross + "0.5}}}";
+  dissimilar.replace(dissimilar.find(kMaterials), kMaterials.size(),
+                     R"("name": "s", "materials": {"pad": {"E": 2e11, "nu": 0.3}, "specimen": {"E": 1.1e11, "nu": 0.34}})");
+  CHECK(warning_codes(dissimilar).empty());
   // Partial slip (δ = 1 µm): the frames differ by the slip alone.
   const std::string partial = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
     "load": {"P": 18500, "control": "displacement", "delta": 1e-6},

@@ -167,7 +167,7 @@ void shared_scar(const Scene& scene, const RunResult& r, std::vector<Warning>& o
                              "both bodies' wear is computed as one profile in the pad's frame, split by pad_fraction: "
                              "the specimen's scar in its own frame (about {:.3g} m wide) is wider and shallower than "
                              "wear_specimen_m shows. The total worn area is right (Archard: k P times the distance "
-                             "slid); each body's own frame is computed without load.blocks under the stepper \"implicit\" or "
+                             "slid); each body's own frame is computed under the stepper \"implicit\" or "
                              "\"cycle_by_cycle\"",
                              c.sliding_amplitude, contact.second - contact.first,
                              contact.second - contact.first + 2.0 * c.sliding_amplitude)});

@@ -493,12 +493,11 @@ class WearRun {
   WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage,
           BodyFrames& frames)
       : WearRun(scene, model, control, contact, stage, record_times(*scene.wear),
-                std::vector<double>(2 * std::size_t(model.grid.n), 0.0), nullptr) {
-    frames_ = &frames;
-  }
-  // One block of load.blocks: from the worn state w at times.front() through the record times, under its load.
+                std::vector<double>(2 * std::size_t(model.grid.n), 0.0), nullptr, &frames) {}
+  // One block of load.blocks: from the worn state w at times.front() through the record times, under its load;
+  // with frames, w is [w_pad; w_spec] and the block is driven by drive_frames().
   WearRun(const Scene& scene, const Model& model, const WearControl& control, WearContact& contact, WearStage& stage,
-          std::vector<double> times, std::vector<double> w, const BlockProgress* block)
+          std::vector<double> times, std::vector<double> w, const BlockProgress* block, BodyFrames* frames = nullptr)
       : scene_(scene),
         effect_(*scene.wear),
         model_(model),
@@ -508,7 +507,8 @@ class WearRun {
         times_(std::move(times)),
         w_(std::move(w)),
         block_(block ? block->block : -1),
-        blocks_(block) {
+        blocks_(block),
+        frames_(frames) {
     stage_.cycles_reached = times_.back();  // until a stop says otherwise
   }
   const std::vector<double>& state() const { return w_; }
@@ -547,7 +547,7 @@ class WearRun {
   std::vector<double> w_;
   int block_;
   const BlockProgress* blocks_;
-  BodyFrames* frames_ = nullptr;
+  BodyFrames* frames_;
   clock::time_point last_checkpoint_;
 };
 
@@ -788,13 +788,27 @@ void drive_by(WearRun& run, WearStepper stepper, double rate_max) {
 // stopped and the later blocks as the uninterrupted run does, to the bit.
 void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle, const WearControl& control,
                 WearStage& stage) {
-  const std::vector<double> all = record_times(*scene.wear);
-  std::vector<double> w(std::size_t(model.grid.n), 0.0);
+  const WearEffect& effect = *scene.wear;
+  const int n = model.grid.n;
+  const std::vector<double> all = record_times(effect);
+  std::vector<double> w(std::size_t(n), 0.0);
+  // Each body in its own frame (engine/body_frames.hpp) in a block that slides over half a cell with the specimen
+  // wearing, under the stepper "implicit" or "cycle_by_cycle", as a run of its one load would. From the first such
+  // block on the blocks carry z = [w_pad; w_spec], where it starts the shared profile split by pad_fraction (which is
+  // what the shared profile stands for), and a later block in partial slip wears the gap's profile w_pad + w_spec,
+  // its wear split by pad_fraction. Empty until then.
+  const bool frames_allowed = effect.pad_fraction < 1.0 && effect.stepper != WearStepper::explicit_capped;
+  std::vector<double> z;
+  const auto mid_stroke = [n](const std::vector<double>& zz) {
+    std::vector<double> out(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) out[std::size_t(i)] = zz[std::size_t(i)] + zz[std::size_t(n + i)];
+    return out;
+  };
   double start = 0.0;
   stage.route = "incremental (load.blocks)";
   long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;
-  // The stage's running values, as a checkpoint carries them.
-  auto values = [&](double rate_max) {
+  // The stage's running values, as a checkpoint carries them, with the block's frames and z where it starts.
+  auto values = [&](double rate_max, bool frames) {
     return json{{"start", start},
                 {"rate_max", rate_max},
                 {"stability_limit", stage.stability_limit},
@@ -807,7 +821,12 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
                 {"cycle_solves", cycle_solves},
                 {"cycle_iterations", cycle_iterations},
                 {"contact_implicit_solves", implicit_solves},
-                {"implicit_iterations", implicit_iterations}};
+                {"implicit_iterations", implicit_iterations},
+                {"frames", frames},
+                {"frame_positions", stage.frame_positions},
+                {"frame_directions", stage.frame_directions},
+                {"frame_iterations", stage.frame_iterations},
+                {"z", blob(z)}};
   };
   std::size_t first = 0;
   const json* resumed = control.resume ? &control.resume->at("blocks") : nullptr;
@@ -828,6 +847,10 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     cycle_iterations = resumed->at("cycle_iterations").get<long>();
     implicit_solves = resumed->at("contact_implicit_solves").get<long>();
     implicit_iterations = resumed->at("implicit_iterations").get<long>();
+    stage.frame_positions = resumed->at("frame_positions").get<int>();
+    stage.frame_directions = resumed->at("frame_directions").get<int>();
+    stage.frame_iterations = resumed->at("frame_iterations").get<long>();
+    z = unblob(resumed->at("z"));
     const json& records = control.resume->at("records");
     for (std::size_t k = 0; k < resumed->at("earlier_records").get<std::size_t>(); ++k)
       stage.records.push_back(record_from(records.at(k)));
@@ -842,28 +865,74 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     const bool resuming = resumed && b == first;
     WearControl block_control = control;
     if (!resuming) block_control.resume.reset();
+    const std::vector<double> w_start = z.empty() ? w : mid_stroke(z);
     double rate_max = 0.0;
+    bool frames = false;
     if (resuming) {
       rate_max = resumed->at("rate_max").get<double>();
+      frames = resumed->at("frames").get<bool>();
     } else {
-      const FirstResponse response = first_response(contact, w, model, stage.rate_coefficient);
+      const FirstResponse response = first_response(contact, w_start, model, stage.rate_coefficient);
       rate_max = response.rate_max;
       if (b == 0) stage.stability_limit = response.stability_limit;
+      const CycleResult& c = contact.last_cycle();
+      frames = frames_allowed && rate_max > 0.0 && c.regime == Regime::gross_slip &&
+               c.sliding_amplitude > 0.5 * model.grid.h();
+      if (frames && z.empty()) {
+        z.assign(std::size_t(2 * n), 0.0);
+        for (int i = 0; i < n; ++i)
+          z[std::size_t(i)] = effect.pad_fraction * w[std::size_t(i)],
+          z[std::size_t(n + i)] = (1.0 - effect.pad_fraction) * w[std::size_t(i)];
+      }
     }
     WearStage part;  // the block's run; its records and counts join the stage's
     part.rate_coefficient = stage.rate_coefficient;
     part.asymptote = stage.asymptote;
     part.stability_limit = stage.stability_limit;
-    const BlockProgress progress{int(b), &stage.records, values(rate_max)};
-    WearRun run(scene, model, block_control, contact, part, times, w, &progress);
-    drive_by(run, scene.wear->stepper, rate_max);
-    w = run.state();
+    const BlockProgress progress{int(b), &stage.records, values(rate_max, frames)};
+    if (frames) {
+      contact.give_slip_travelled();  // the frames weigh it by their own pressures
+      const double c = stage.rate_coefficient, pad = effect.pad_fraction;
+      BodyFrames body_frames(
+          model, scene.P, *scene.friction, c * pad, c * (1.0 - pad),
+          [&contact](std::span<const double> state, wear::CycleResponse& out) { contact.respond(state, out); },
+          [&contact] { return contact.last_cycle().sliding_amplitude; });
+      WearRun run(scene, model, block_control, contact, part, times, z, &progress, &body_frames);
+      run.drive_frames(rate_max);
+      implicit_solves += body_frames.solves(), implicit_iterations += body_frames.cg_iterations();
+      z = run.state();
+      w = mid_stroke(z);
+    } else {
+      WearRun run(scene, model, block_control, contact, part, times, w_start, &progress);
+      drive_by(run, effect.stepper, rate_max);
+      w = run.state();
+      if (!z.empty()) {  // the bodies in their own frames so far: this block's wear split by pad_fraction
+        const double pad = effect.pad_fraction;
+        const auto split = [&](const std::vector<double>& state, std::vector<double>& w_pad,
+                               std::vector<double>& w_specimen) {
+          w_pad.assign(z.begin(), z.begin() + n);
+          w_specimen.assign(z.begin() + n, z.end());
+          for (int i = 0; i < n; ++i) {
+            const double worn = state[std::size_t(i)] - w_start[std::size_t(i)];
+            w_pad[std::size_t(i)] += pad * worn, w_specimen[std::size_t(i)] += (1.0 - pad) * worn;
+          }
+        };
+        for (WearRecord& r : part.records) split(r.w, r.w_pad, r.w_specimen);
+        std::vector<double> w_pad, w_specimen;
+        split(w, w_pad, w_specimen);
+        std::copy(w_pad.begin(), w_pad.end(), z.begin());
+        std::copy(w_specimen.begin(), w_specimen.end(), z.begin() + n);
+      }
+    }
     for (WearRecord& r : part.records) stage.records.push_back(std::move(r));
     stage.steps += part.steps, stage.rejected_steps += part.rejected_steps;
     stage.unconverged_steps += part.unconverged_steps, stage.implicit_solves += part.implicit_solves;
     stage.responses += part.responses;
     stage.explicit_step_cap = part.explicit_step_cap;
     stage.explicit_max_step = std::max(stage.explicit_max_step, part.explicit_max_step);
+    stage.frame_positions = std::max(stage.frame_positions, part.frame_positions);
+    stage.frame_directions = std::max(stage.frame_directions, part.frame_directions);
+    stage.frame_iterations += part.frame_iterations;
     stage.cycles_reached = part.cycles_reached;
     if (part.resumed_from) stage.resumed_from = part.resumed_from;
     cycle_solves += contact.cycle_solves, cycle_iterations += contact.cycle_iterations;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <set>
 #include <string>
@@ -203,20 +204,13 @@ TEST_CASE("a gross-slip run with each body in its own frame, killed mid-run, res
   check_resumes_to(s, whole);
 }
 
-TEST_CASE("a run under load.blocks stopped or killed in any block resumes to the uninterrupted result") {
-  // Three blocks (Q/fP = 0.5 for 200 cycles, a history of P and Q for 5000, Q/fP = 0.7 for 2000; 256 cells, 123
-  // steps in all): the step hooks count each block's steps, so step 1 stops in the first block and step 30 in the
-  // second, after the first block's records.
-  Scratch s;
-  s.write("s.json", R"({"name": "resume", "materials": {"both": {"E": 2e11, "nu": 0.3}},
-    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
-    "load": {"P": 1e5, "blocks": [{"Q": {"ratio": 0.5}, "cycles": 200},
-      {"history": [[0, 1e5, 2e4, 0], [0.25, 1.2e5, 0, 0], [0.5, 1e5, -2e4, 0], [0.75, 0.8e5, 0, 0], [1, 1e5, 2e4, 0]],
-       "cycles": 5000}, {"Q": {"ratio": 0.7}, "cycles": 2000}]},
-    "grid": {"cells": 256, "window": [-0.2e-3, 0.2e-3]},
-    "effects": {"wear": {"k": 1e-12, "cycles": 7200, "record": 8}}, "output": {"dir": "out/resume", "plots": false}})");
-  const Whole whole = whole_run(s);
-  for (const auto& [step, first_cycle, last_cycle] : {std::tuple{1, 0.0, 200.0}, std::tuple{30, 200.0, 5200.0}}) {
+namespace {
+
+// A run under load.blocks stopped (then killed) at each given step of its blocks, {step, after, before}: it stops
+// between cycles `after` and `before`, and resumes to the uninterrupted run `whole`.
+void check_blocks_resume(const Scratch& s, const Whole& whole,
+                         std::initializer_list<std::tuple<int, double, double>> stops) {
+  for (const auto& [step, first_cycle, last_cycle] : stops) {
     INFO("stopped at step " << step << " of its block");
     const Outcome stopped = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}});
     REQUIRE_MESSAGE(stopped.exited(kInterrupted), stopped.describe());
@@ -230,6 +224,40 @@ TEST_CASE("a run under load.blocks stopped or killed in any block resumes to the
     REQUIRE_MESSAGE(ended_by(killed, SIGKILL), killed.describe());
     check_resumes_to(s, whole);
   }
+}
+
+}  // namespace
+
+TEST_CASE("a run under load.blocks stopped or killed in any block resumes to the uninterrupted result") {
+  // Three blocks (Q/fP = 0.5 for 200 cycles, a history of P and Q for 5000, Q/fP = 0.7 for 2000; 256 cells, 123
+  // steps in all): the step hooks count each block's steps, so step 1 stops in the first block and step 30 in the
+  // second, after the first block's records.
+  Scratch s;
+  s.write("s.json", R"({"name": "resume", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "load": {"P": 1e5, "blocks": [{"Q": {"ratio": 0.5}, "cycles": 200},
+      {"history": [[0, 1e5, 2e4, 0], [0.25, 1.2e5, 0, 0], [0.5, 1e5, -2e4, 0], [0.75, 0.8e5, 0, 0], [1, 1e5, 2e4, 0]],
+       "cycles": 5000}, {"Q": {"ratio": 0.7}, "cycles": 2000}]},
+    "grid": {"cells": 256, "window": [-0.2e-3, 0.2e-3]},
+    "effects": {"wear": {"k": 1e-12, "cycles": 7200, "record": 8}}, "output": {"dir": "out/resume", "plots": false}})");
+  check_blocks_resume(s, whole_run(s), {{1, 0.0, 200.0}, {30, 200.0, 5200.0}});
+}
+
+TEST_CASE("load.blocks with each body in its own frame, stopped or killed in a block, resumes to the bit") {
+  // The gross-slip scene shortened, in three blocks: partial slip (δ = 1 µm) for 50 cycles, gross slip (25 µm) for
+  // 60, worn in the bodies' own frames, then partial slip for 20 000, its wear split onto the two profiles (85 steps
+  // in all). Step 10 stops in the second block (whose state is the two profiles), step 40 in the third (the shared
+  // profile on top of the two the second block left, which the checkpoint carries).
+  Scratch s;
+  s.write("s.json", R"({"name": "resume", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
+    "load": {"P": 18500, "blocks": [{"delta": 1e-6, "cycles": 50}, {"delta": 25e-6, "cycles": 60},
+      {"delta": 1e-6, "cycles": 20000}]},
+    "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
+    "effects": {"wear": {"k": 5e-14, "cycles": 20110, "record": 8}}, "output": {"dir": "out/resume", "plots": false}})");
+  const Whole whole = whole_run(s);
+  REQUIRE(whole.summary["wear"]["bodies"]["frames"] == "own");
+  check_blocks_resume(s, whole, {{10, 50.0, 110.0}, {40, 110.0, 20110.0}});
 }
 
 TEST_CASE("--resume refuses another scene's checkpoint, and without one runs from the start") {

@@ -4,6 +4,7 @@
 // U = 24.3 µm each way), Archard k = 5e-14 1/Pa shared equally. The pad's points stay under the contact; the
 // specimen's meet the whole stroke, so its scar is wider by up to 2U and shallower, and the pad's deeper.
 #include <algorithm>
+#include <fstream>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -181,4 +182,73 @@ TEST_CASE("body frames: the newest edge cells carry the every-cycle solution's p
     CHECK(std::abs(ps[first + k] - pe[first + k]) < kEdgeAgreement * p_max);
     CHECK(std::abs(ps[last - k] - pe[last - k]) < kEdgeAgreement * p_max);
   }
+}
+
+namespace {
+
+// The example at 256 cells as JSON, its load replaced.
+Scene with_load(const nlohmann::json& load, double cycles) {
+  std::ifstream in(std::string(FRETWEAR_SOURCE_DIR) + "/examples/gross_slip_displacement_wear.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["grid"]["cells"] = 256;
+  j["load"] = load;
+  j["effects"]["wear"]["cycles"] = cycles;
+  return parse_scene(j);
+}
+
+}  // namespace
+
+TEST_CASE("body frames under load.blocks: a sliding block wears each body in its own frame, as its own load does") {
+  // One block of the example's load is the example (5000 cycles, 256 cells) to the bit: the same steps from the
+  // same state. Two blocks of it restart the stepper at 2000 cycles: within the stepper's tolerance of it.
+  const nlohmann::json delta = {{"P", 18500}, {"control", "displacement"}, {"delta", 25e-6}};
+  const Run plain = run(with_load(delta, 5000));
+  const Run one = run(with_load({{"P", 18500}, {"blocks", {{{"delta", 25e-6}, {"cycles", 5000}}}}}, 5000));
+  const Run two = run(with_load(
+      {{"P", 18500}, {"blocks", {{{"delta", 25e-6}, {"cycles", 2000}}, {{"delta", 25e-6}, {"cycles", 3000}}}}}, 5000));
+  REQUIRE(plain.stage.frame_positions > 0);
+  CHECK(one.stage.frame_positions == plain.stage.frame_positions);
+  CHECK(one.stage.pad.max_depth == plain.stage.pad.max_depth);
+  CHECK(one.stage.specimen.max_depth == plain.stage.specimen.max_depth);
+  CHECK(one.stage.records.back().w_specimen == plain.stage.records.back().w_specimen);
+  CHECK(relative(two.stage.pad.max_depth, plain.stage.pad.max_depth) < kAgreement);
+  CHECK(relative(two.stage.specimen.max_depth, plain.stage.specimen.max_depth) < kAgreement);
+  CHECK(relative(two.stage.specimen.worn_area, plain.stage.specimen.worn_area) < kAgreement);
+}
+
+TEST_CASE("body frames under load.blocks: partial-slip blocks around a sliding one split their wear by pad_fraction") {
+  // δ = 1 µm (partial slip) for 2000 cycles, 25 µm (gross slip) for 5000, 1 µm for 2000, pad_fraction 0.5. The first
+  // block wears the shared profile; the sliding block starts the two profiles from it, split by pad_fraction, and
+  // wears them in their own frames; the last block wears the gap's profile w_pad + w_spec and adds half its wear to
+  // each. Every record from the sliding block on holds both profiles, summing to the gap's wear.
+  const Run r = run(with_load({{"P", 18500},
+                               {"blocks",
+                                {{{"delta", 1e-6}, {"cycles", 2000}},
+                                 {{"delta", 25e-6}, {"cycles", 5000}},
+                                 {{"delta", 1e-6}, {"cycles", 2000}}}}},
+                              9000));
+  REQUIRE(r.stage.frame_positions > 0);
+  const std::vector<WearRecord>& records = r.stage.records;
+  const auto starts = [&](int block) {
+    return std::find_if(records.begin(), records.end(), [block](const WearRecord& x) { return x.block == block; });
+  };
+  for (auto k = records.begin(); k != records.end(); ++k) {
+    CAPTURE(k->cycles);
+    CHECK(k->w_pad.empty() == (k->block == 0));
+    if (k->w_pad.empty()) continue;
+    double worst = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < k->w.size(); ++i)
+      worst = std::max(worst, std::abs(k->w_pad[i] + k->w_specimen[i] - k->w[i])), largest = std::max(largest, k->w[i]);
+    CHECK(worst <= 1e-12 * largest);
+  }
+  // The last block adds the same wear to both bodies, cell by cell (pad_fraction 0.5), and the sliding block spread
+  // the specimen's scar past the pad's.
+  const WearRecord &before = *starts(2), &last = records.back();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < last.w.size(); ++i)
+    worst = std::max(worst, std::abs((last.w_pad[i] - before.w_pad[i]) - (last.w_specimen[i] - before.w_specimen[i])));
+  CHECK(worst <= 1e-12 * last.w[std::size_t(last.w.size() / 2)]);
+  CHECK(r.stage.specimen.extent.second - r.stage.specimen.extent.first >
+        r.stage.pad.extent.second - r.stage.pad.extent.first + 20e-6);  // the stroke: 24.3 µm each way
+  CHECK(relative(r.stage.pad.worn_area, r.stage.specimen.worn_area) < kAreaRatioClipped);
 }

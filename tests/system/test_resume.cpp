@@ -244,20 +244,20 @@ TEST_CASE("a run under load.blocks stopped or killed in any block resumes to the
 }
 
 TEST_CASE("load.blocks with each body in its own frame, stopped or killed in a block, resumes to the bit") {
-  // The gross-slip scene shortened, in three blocks: partial slip (δ = 1 µm) for 50 cycles, gross slip (25 µm) for
-  // 60, worn in the bodies' own frames, then partial slip for 20 000, its wear split onto the two profiles (85 steps
-  // in all). Step 10 stops in the second block (whose state is the two profiles), step 40 in the third (the shared
+  // The gross-slip scene shortened, in three blocks: partial slip (δ = 0.5 µm) for 50 cycles, gross slip (25 µm) for
+  // 10, worn in the bodies' own frames, then partial slip for 20 000, its wear split onto the two profiles (48 steps
+  // in all). Step 10 stops in the second block (whose state is the two profiles), step 20 in the third (the shared
   // profile on top of the two the second block left, which the checkpoint carries).
   Scratch s;
   s.write("s.json", R"({"name": "resume", "materials": {"both": {"E": 2e11, "nu": 0.3}},
     "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
-    "load": {"P": 18500, "blocks": [{"delta": 1e-6, "cycles": 50}, {"delta": 25e-6, "cycles": 60},
-      {"delta": 1e-6, "cycles": 20000}]},
+    "load": {"P": 18500, "blocks": [{"delta": 0.5e-6, "cycles": 50}, {"delta": 25e-6, "cycles": 10},
+      {"delta": 0.5e-6, "cycles": 20000}]},
     "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
-    "effects": {"wear": {"k": 5e-14, "cycles": 20110, "record": 8}}, "output": {"dir": "out/resume", "plots": false}})");
+    "effects": {"wear": {"k": 5e-14, "cycles": 20060, "record": 8}}, "output": {"dir": "out/resume", "plots": false}})");
   const Whole whole = whole_run(s);
   REQUIRE(whole.summary["wear"]["bodies"]["frames"] == "own");
-  check_blocks_resume(s, whole, {{10, 50.0, 110.0}, {40, 110.0, 20110.0}});
+  check_blocks_resume(s, whole, {{10, 50.0, 60.0}, {20, 60.0, 20060.0}});
 }
 
 TEST_CASE("--resume refuses another scene's checkpoint, and without one runs from the start") {

@@ -217,15 +217,15 @@ TEST_CASE("body frames under load.blocks: a sliding block wears each body in its
 }
 
 TEST_CASE("body frames under load.blocks: partial-slip blocks around a sliding one split their wear by pad_fraction") {
-  // δ = 1 µm (partial slip) for 2000 cycles, 25 µm (gross slip) for 5000, 1 µm for 2000, pad_fraction 0.5. The first
-  // block wears the shared profile; the sliding block starts the two profiles from it, split by pad_fraction, and
+  // δ = 0.5 µm (partial slip; the stick limit is 0.68 µm) for 2000 cycles, 25 µm (gross slip) for 5000, 0.5 µm for
+  // 2000, pad_fraction 0.5. The first block wears the shared profile; the sliding block starts the two profiles from it, split by pad_fraction, and
   // wears them in their own frames; the last block wears the gap's profile w_pad + w_spec and adds half its wear to
   // each. Every record from the sliding block on holds both profiles, summing to the gap's wear.
   const Run r = run(with_load({{"P", 18500},
                                {"blocks",
-                                {{{"delta", 1e-6}, {"cycles", 2000}},
+                                {{{"delta", 0.5e-6}, {"cycles", 2000}},
                                  {{"delta", 25e-6}, {"cycles", 5000}},
-                                 {{"delta", 1e-6}, {"cycles", 2000}}}}},
+                                 {{"delta", 0.5e-6}, {"cycles", 2000}}}}},
                               9000));
   REQUIRE(r.stage.frame_positions > 0);
   const std::vector<WearRecord>& records = r.stage.records;

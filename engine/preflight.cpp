@@ -82,33 +82,79 @@ Flat flat_holding(const Profile& profile, double area, double h) {
   return flat_at(profile, 0.5 * (lo_d + hi_d), h);
 }
 
-void check_gross_slip_window(const Scene& scene, const Model& model, const CycleStage& cycle, const WearEstimate& e,
-                             std::vector<std::string>& problems, Preflight* preflight) {
-  if (cycle.result.regime != Regime::gross_slip || !scene.blocks.empty() || !(e.area_rate > 0.0)) return;
+// A load that wears in gross slip, for the window check below: the area worn before it (m²), its first cycle's
+// rate c ∫ p s dx (m²/cycle), its cycles, how far the specimen's scar reaches beyond the contact (U with each body in
+// its own frame, else 0), and what names it in the message ("" for the scene's own load).
+struct SlidingWear {
+  double area_before = 0.0, rate = 0.0, cycles = 0.0, U = 0.0;
+  std::string which;
+};
+
+// In gross slip the contact wears flat without limit: refused when the flat holding the worn area (the original
+// profile cut flat, and U beyond it) reaches the window's end within the cycles, warned within 20 % of them.
+void check_sliding_window(const Model& model, const SlidingWear& load, std::vector<std::string>& problems,
+                          Preflight* preflight) {
   const Grid& grid = model.grid;
-  const double cycles = scene.wear->cycles;
-  // With each body in its own frame the specimen's scar reaches the sliding amplitude U beyond the contact.
-  const double U = bodies_in_own_frames(scene, model, cycle) ? cycle.result.sliding_amplitude : 0.0;
-  const Flat end = flat_holding(model.profile, e.area_rate * cycles, grid.h());
-  const Flat margin = flat_holding(model.profile, (1.0 + kFlatMargin) * e.area_rate * cycles, grid.h());
+  const double U = load.U, area = load.area_before + load.rate * load.cycles;
+  const Flat end = flat_holding(model.profile, area, grid.h());
+  const Flat margin = flat_holding(model.profile, load.area_before + (1.0 + kFlatMargin) * load.rate * load.cycles,
+                                   grid.h());
   if (margin.left - U > grid.x_min && margin.right + U < grid.x_max) return;  // with the margin it fits: so does `end`
   // The cycles at which the flat (and U) reaches the nearer end of the window.
   const double d_window = std::min(model.profile.gap(grid.x_min + U), model.profile.gap(grid.x_max - U));
-  const double reached = flat_at(model.profile, d_window, grid.h()).area / e.area_rate;
+  const double reached = (flat_at(model.profile, d_window, grid.h()).area - load.area_before) / load.rate;
   const double x0 = model.profile.lowest_point();
   const double half = 1.2 * (std::max(x0 - end.left, end.right - x0) + U);
   const std::string scar =
       U > 0.0 ? fmt::format(" (with the specimen's scar, which spreads {:.3g} m further each side)", U) : "";
   const std::string what = fmt::format(
-      "in gross slip the contact wears flat and keeps widening: at the first cycle's rate (c ∫ p s dx = {:.3g} m² a "
-      "cycle) it{} reaches the window's end after about {:.3g} of the {:.4g} cycles (the original profile cut flat to "
-      "hold the worn area; docs/SCENES.md, \"Wear\"). Widen grid.window to about [{:.3g}, {:.3g}] m (that flat after "
-      "the last cycle, and 20 %), or wear fewer cycles",
-      e.area_rate, scar, reached, cycles, x0 - half, x0 + half);
-  if (reached < cycles)
-    problems.push_back("effects.wear.cycles: " + what);
+      "in gross slip{} the contact wears flat and keeps widening: at the first cycle's rate (c ∫ p s dx = {:.3g} m² a "
+      "cycle{}) it{} reaches the window's end after about {:.3g} of the {:.4g} cycles (the original profile cut flat "
+      "to hold the worn area; docs/SCENES.md, \"Wear\"). Widen grid.window to about [{:.3g}, {:.3g}] m (that flat "
+      "after the last cycle, and 20 %), or wear fewer cycles",
+      load.which, load.rate,
+      load.area_before > 0.0 ? fmt::format(", after the {:.3g} m² the sliding blocks before it wear", load.area_before)
+                             : "",
+      scar, std::max(0.0, reached), load.cycles, x0 - half, x0 + half);
+  if (reached < load.cycles)
+    problems.push_back((load.which.empty() ? "effects.wear.cycles: " : "load.blocks: ") + what);
   else if (preflight)
     preflight->warnings.push_back({"window_reached", "the worn contact may reach the window's end: " + what});
+}
+
+void check_gross_slip_window(const Scene& scene, const Model& model, const CycleStage& cycle, const WearEstimate& e,
+                             std::vector<std::string>& problems, Preflight* preflight) {
+  if (cycle.result.regime != Regime::gross_slip || !scene.blocks.empty() || !(e.area_rate > 0.0)) return;
+  // With each body in its own frame the specimen's scar reaches the sliding amplitude U beyond the contact.
+  const double U = bodies_in_own_frames(scene, model, cycle) ? cycle.result.sliding_amplitude : 0.0;
+  check_sliding_window(model, {0.0, e.area_rate, scene.wear->cycles, U, ""}, problems, preflight);
+}
+
+// Under load.blocks, each block that slides, in order: its own cycle and first rate on the unworn contact, after the
+// area the sliding blocks before it wear at theirs. Blocks in partial slip wear towards a limit and are left out
+// (the check may then pass a window they narrow; the run says so when the scar reaches the window's end).
+void check_blocks_window(const Scene& scene, const Model& model, const NormalResult& normal,
+                         std::vector<std::string>& problems, Preflight* preflight) {
+  double area = 0.0;
+  for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
+    const LoadBlock& block = scene.blocks[b];
+    Scene one = scene;
+    one.blocks.clear();
+    one.Q_amplitude = block.Q_amplitude, one.Q_ratio = block.Q_ratio, one.delta = block.delta;
+    one.history = block.history;
+    one.control = block.delta ? LoadControl::displacement : LoadControl::force;
+    one.wear->cycles = block.cycles;
+    const CycleStage cycle = solve_cycle(one, model, normal);
+    if (cycle.result.regime != Regime::gross_slip || cycle.result.slip_travelled.empty()) continue;
+    const WearEstimate e = estimate_wear(one, model, cycle);
+    if (!(e.area_rate > 0.0)) continue;
+    const double U = bodies_in_own_frames(one, model, cycle) ? cycle.result.sliding_amplitude : 0.0;
+    const std::size_t before = problems.size();
+    check_sliding_window(model, {area, e.area_rate, block.cycles, U, fmt::format(" (load.blocks[{}])", b)}, problems,
+                         preflight);
+    if (problems.size() > before) return;  // the later blocks start beyond the window
+    area += e.area_rate * block.cycles;
+  }
 }
 
 // The wear run's cost from its first cycle: refused past kMaxRunSeconds, a warning past kLongRunSeconds.
@@ -118,6 +164,7 @@ void check_wear(const Scene& scene, const Setup& setup, const NormalResult& norm
   const CycleStage cycle = solve_cycle(scene, setup.model, *setup.cycle, normal);
   const WearEstimate e = estimate_wear(scene, setup.model, cycle);
   check_gross_slip_window(scene, setup.model, cycle, e, problems, preflight);
+  if (!scene.blocks.empty()) check_blocks_window(scene, setup.model, normal, problems, preflight);
   if (effect.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(e.stability_limit); !problem.empty()) {
       problems.push_back(problem);

@@ -142,7 +142,8 @@ TEST_CASE("gross-slip wear says the specimen's scar is the shared profile's wher
   dissimilar.replace(dissimilar.find(kMaterials), kMaterials.size(),
                      R"("name": "s", "materials": {"pad": {"E": 2e11, "nu": 0.3}, "specimen": {"E": 1.1e11, "nu": 0.34}})");
   CHECK(warning_codes(dissimilar).empty());
-  // Partial slip (δ = 1 µm): the frames differ by the slip alone.
+  // A stroke under half a cell (δ = 1 µm, past the stick limit of 0.68 µm: the bodies slide 0.32 µm each way, the
+  // cells are 4.7 µm): the frames differ by less than a cell.
   const std::string partial = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
     "load": {"P": 18500, "control": "displacement", "delta": 1e-6},
     "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
@@ -180,8 +181,25 @@ TEST_CASE("a gross-slip wear run whose contact would reach the window's end is r
   CHECK(wide.status == 0);
   // Close to the end, the run goes ahead with a warning.
   CHECK(warning_codes(scene("2.45e5", "[-0.6e-3, 0.6e-3]")).count("window_reached") == 1);
-  // Partial slip never widens: no estimate.
+  // A stroke of 0.32 µm each way (δ = 1 µm, just past the stick limit of 0.68 µm) wears too slowly to get there.
   CHECK(warning_codes(scene("2e6", "[-0.6e-3, 0.6e-3]", "1e-6")).count("window_reached") == 0);
+  // Under load.blocks each sliding block is checked after the area the sliding blocks before it wear: two blocks of
+  // 1.5e5 cycles each fit alone, and the second is refused (a partial-slip block before them, δ = 0.5 µm, wears
+  // towards a limit and is left out).
+  std::string blocks = scene("3.01e5", "[-0.6e-3, 0.6e-3]");
+  blocks.replace(blocks.find("\"control\""), blocks.find("}", blocks.find("\"control\"")) - blocks.find("\"control\""),
+                 R"("blocks": [{"delta": 0.5e-6, "cycles": 1000}, {"delta": 25e-6, "cycles": 1.5e5},
+                    {"delta": 25e-6, "cycles": 1.5e5}])");
+  write_file(scratch.path / "s.json", blocks);
+  std::filesystem::remove_all(scratch.path / "output");  // the wide run's, above
+  for (const char* command : {"validate", "run"}) {
+    const Outcome o = run_program(scratch.path, {command, "s.json"});
+    CAPTURE(o.all());
+    CHECK(o.status == 2);
+    CHECK(o.err.find("load.blocks: in gross slip (load.blocks[2]) the contact wears flat") != std::string::npos);
+    CHECK(o.err.find("after the 1.35e-08 m² the sliding blocks before it wear") != std::string::npos);
+    CHECK(!std::filesystem::exists(scratch.path / "output"));
+  }
   // Both bodies wearing, each in its own frame: the specimen's scar spreads the sliding amplitude (24 µm) further,
   // so the window is reached sooner (2.35e5 cycles), and 2.45e5 cycles, a warning above, are refused.
   std::string both = scene("2.45e5", "[-0.6e-3, 0.6e-3]");

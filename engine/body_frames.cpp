@@ -336,6 +336,33 @@ void FramesWearStepper::restore(const nlohmann::json& j) {
   for (const auto& v : j.at("p_start")) p_start_.push_back(unblob(v));
 }
 
+void FramesRateSystem::operator()(const std::vector<double>& z, std::vector<double>& dz, double /*N*/) {
+  wear::CycleResponse r;
+  if (!p_.empty()) r.p = p_[p_.size() / 2];
+  frames_->respond(z, r);
+  ++evaluations_;
+  if (p_.size() != frames_->states()) p_.assign(frames_->states(), r.p);
+  frames_->pressures(z, p_);
+  frames_->rates(p_, dz);
+  rate_ = dz;
+}
+
+nlohmann::json FramesRateSystem::save() const {
+  nlohmann::json p = nlohmann::json::array();
+  for (const auto& v : p_) p.push_back(blob(v));
+  return {{"evaluations", evaluations_}, {"rate", blob(rate_)}, {"p", std::move(p)},
+          {"solves", frames_->solves()}, {"iterations", frames_->iterations()},
+          {"cg_iterations", frames_->cg_iterations()}};
+}
+
+void FramesRateSystem::restore(const nlohmann::json& j) {
+  evaluations_ = j.at("evaluations").get<long>();
+  rate_ = unblob(j.at("rate"));
+  p_.clear();
+  for (const auto& v : j.at("p")) p_.push_back(unblob(v));
+  frames_->count(j.at("solves").get<long>(), j.at("iterations").get<long>(), j.at("cg_iterations").get<long>());
+}
+
 controlled_step_result FramesCycleByCycle::try_step(std::reference_wrapper<BodyFrames> system, state_type& z,
                                                     double& N, double& dN) {
   BodyFrames& frames = system.get();

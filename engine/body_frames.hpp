@@ -193,6 +193,26 @@ class FramesWearStepper {
   double amplitude_ = 0.0;
 };
 
+// dz/dN at z for the explicit stepper (effects.wear.stepper "explicit", wear/reference_steppers.hpp's
+// ExplicitWearStepper): the cycle at mid-stroke, every state's pressure on z (warm-started from the last
+// evaluation's), and the rates. Its save/restore carry what a resumed run needs to repeat the uninterrupted one:
+// the count, the last rate (Dormand–Prince's first-same-as-last derivative) and the pressures it warm-starts from.
+class FramesRateSystem {
+ public:
+  explicit FramesRateSystem(BodyFrames& frames) : frames_(&frames) {}
+  void operator()(const std::vector<double>& z, std::vector<double>& dz, double N);
+  long evaluations() const { return evaluations_; }
+  const std::vector<double>& last_rate() const { return rate_; }
+  nlohmann::json save() const;
+  void restore(const nlohmann::json& j);
+
+ private:
+  BodyFrames* frames_;
+  std::vector<std::vector<double>> p_;
+  std::vector<double> rate_;
+  long evaluations_ = 0;
+};
+
 // One cycle at a time, every position: the reference of the step above (effects.wear.stepper "cycle_by_cycle").
 class FramesCycleByCycle {
  public:

@@ -149,30 +149,6 @@ void wear_overshoot(const Scene& scene, const RunResult& r, std::vector<Warning>
                                100.0 * fraction, r.normal.grid.h(), 100.0 * grid, 100.0 * kWearAgreement)});
 }
 
-// Both bodies' wear is one profile in the pad's frame, split by pad_fraction (PHYSICS.md, "Dissimilar bodies and
-// per-body wear"). In partial slip the specimen's points move against the pad's by the slip, micrometres at most,
-// and the two frames agree. In gross slip the specimen slides past the pad by the sliding amplitude U each way, so
-// its scar in its own frame spreads over the contact width plus 2U, wider and shallower than its share of the shared
-// profile, and the gap at each instant sees the specimen's scar shifted. The total worn area does not depend on the
-// frames (Archard: k P times the distance slid, whatever the shape), and the pad's share, in its own frame, is
-// right where the specimen's scar is flat under it. Warned when the specimen wears (pad_fraction < 1) and U exceeds
-// half a cell.
-void shared_scar(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
-  const CycleResult& c = r.cycle->result;
-  if (c.regime != Regime::gross_slip || !(scene.wear->pad_fraction < 1.0)) return;
-  if (!(c.sliding_amplitude > 0.5 * r.normal.grid.h()) || r.wear->frame_positions > 0) return;
-  const Interval contact = r.wear->records.back().contact;
-  out.push_back({"gross_slip_shared_scar",
-                 fmt::format("in gross slip the specimen slides {:.3g} m each way under a contact {:.3g} m wide, but "
-                             "both bodies' wear is computed as one profile in the pad's frame, split by pad_fraction: "
-                             "the specimen's scar in its own frame (about {:.3g} m wide) is wider and shallower than "
-                             "wear_specimen_m shows. The total worn area is right (Archard: k P times the distance "
-                             "slid); each body's own frame is computed under the stepper \"implicit\" or "
-                             "\"cycle_by_cycle\"",
-                             c.sliding_amplitude, contact.second - contact.first,
-                             contact.second - contact.first + 2.0 * c.sliding_amplitude)});
-}
-
 // Stress and fatigue maxima at a singular edge (engine/stress_stage.hpp, SingularEdges) grow with the grid: the
 // summary marks them, and the warning names them with what converges instead.
 void singular_maxima(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
@@ -270,7 +246,6 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
   if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out);
   if (result.wear && !result.wear->records.empty()) {
     wear_overshoot(scene, result, out);
-    if (result.cycle) shared_scar(scene, result, out);
     worn_zigzag(scene, result, out);
   }
   if (!result.stress_maps.empty() || result.life) singular_maxima(scene, result, out);

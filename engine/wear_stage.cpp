@@ -522,7 +522,7 @@ class WearRun {
   void drive_explicit(double rate_max);
   void drive_cycle_by_cycle();
   void drive_implicit(double rate_max);
-  // The bodies' frames (the second constructor): by the stepper the scene names, "implicit" or "cycle_by_cycle".
+  // The bodies' frames (the second constructor): by the stepper the scene names.
   void drive_frames(double rate_max);
 
  private:
@@ -710,7 +710,33 @@ void WearRun::drive_implicit(double rate_max) {
 
 void WearRun::drive_frames(double rate_max) {
   BodyFrames& frames = *frames_;
-  if (effect_.stepper == WearStepper::cycle_by_cycle) {
+  if (effect_.stepper == WearStepper::explicit_capped) {
+    // As drive_explicit(): the tolerance on the scale of the depth the run wears toward, steps capped below the
+    // explicit stability limit of the bodies' coefficients together.
+    const double depth = stage_.asymptote.max_depth > 0.0 ? stage_.asymptote.max_depth : rate_max * effect_.cycles;
+    stage_.explicit_step_cap = kExplicitCapFraction * stage_.stability_limit;
+    wear::ExplicitWearStepper stepper(effect_.tolerance * depth, effect_.tolerance, stage_.explicit_step_cap);
+    FramesRateSystem rate(frames);
+    const double dN = std::min(stage_.explicit_step_cap, std::max(1.0, effect_.tolerance * depth / rate_max));
+    drive(
+        stepper, std::ref(rate), dN,
+        [&] {
+          json j = rate.save();
+          j["accepted"] = stepper.stats().accepted, j["rejected"] = stepper.stats().rejected;
+          j["max_step"] = stepper.stats().max_step;
+          return j;
+        },
+        [&](const json& j) {
+          rate.restore(j);
+          const int accepted = j.at("accepted").get<int>();
+          stepper.restore({accepted, j.at("rejected").get<int>(), j.at("max_step").get<double>()}, w_,
+                          accepted > 0 ? &rate.last_rate() : nullptr);
+        });
+    stage_.steps = stepper.stats().accepted;
+    stage_.rejected_steps = stepper.stats().rejected;
+    stage_.explicit_max_step = stepper.stats().max_step;
+    stage_.responses = int(rate.evaluations());
+  } else if (effect_.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(stage_.stability_limit); !problem.empty())
       throw UnsupportedError(problem);
     FramesCycleByCycle stepper;
@@ -793,11 +819,11 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
   const std::vector<double> all = record_times(effect);
   std::vector<double> w(std::size_t(n), 0.0);
   // Each body in its own frame (engine/body_frames.hpp) in a block that slides over half a cell with the specimen
-  // wearing, under the stepper "implicit" or "cycle_by_cycle", as a run of its one load would. From the first such
-  // block on the blocks carry z = [w_pad; w_spec], where it starts the shared profile split by pad_fraction (which is
-  // what the shared profile stands for), and a later block in partial slip wears the gap's profile w_pad + w_spec,
-  // its wear split by pad_fraction. Empty until then.
-  const bool frames_allowed = effect.pad_fraction < 1.0 && effect.stepper != WearStepper::explicit_capped;
+  // wearing, as a run of its one load would. From the first such block on the blocks carry z = [w_pad; w_spec],
+  // where it starts the shared profile split by pad_fraction (which is what the shared profile stands for), and a
+  // later block in partial slip wears the gap's profile w_pad + w_spec, its wear split by pad_fraction. Empty until
+  // then.
+  const bool frames_allowed = effect.pad_fraction < 1.0;
   std::vector<double> z;
   const auto mid_stroke = [n](const std::vector<double>& zz) {
     std::vector<double> out(static_cast<std::size_t>(n));
@@ -995,8 +1021,7 @@ void scars(const Model& model, const WearEffect& effect, WearStage& stage) {
 bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleStage& cycle) {
   const CycleResult& c = cycle.result;
   return scene.wear && c.regime == Regime::gross_slip && scene.wear->pad_fraction < 1.0 &&
-         c.sliding_amplitude > 0.5 * model.grid.h() && scene.blocks.empty() &&
-         scene.wear->stepper != WearStepper::explicit_capped;
+         c.sliding_amplitude > 0.5 * model.grid.h() && scene.blocks.empty();
 }
 
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,

@@ -179,10 +179,10 @@ std::string cycle_by_cycle_problem(double stability_limit);
 
 // Whether the run tracks each body's wear in its own frame (engine/body_frames.hpp): gross slip (the sliding
 // amplitude over half a cell) with the specimen wearing (pad_fraction < 1), similar or dissimilar bodies (for β ≠ 0
-// each position's pressure is solved for each sliding direction), and the stepper "implicit" or "cycle_by_cycle".
-// Elsewhere both bodies share one profile in the pad's frame, split by pad_fraction, and in gross slip the warning
-// gross_slip_shared_scar says so. This is the scene's own load's rule; under load.blocks each block's cycle decides
-// for that block (false here, where the cycle stage solved the first block's alone).
+// each position's pressure is solved for each sliding direction), under any stepper. Elsewhere both bodies share
+// one profile in the pad's frame, split by pad_fraction: in partial slip, or a stroke under half a cell, the two
+// frames differ by less than a cell. This is the scene's own load's rule; under load.blocks each block's cycle
+// decides for that block (false here, where the cycle stage solved the first block's alone).
 bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleStage& cycle);
 
 // Runs the wear of a scene with the stepper it names (effects.wear.stepper): "implicit" (the default), "explicit"

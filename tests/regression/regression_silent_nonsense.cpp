@@ -123,34 +123,6 @@ TEST_CASE("a slip zone narrower than the grid resolves warns, and so does a worn
     "effects": {"wear": {"k": 1e-12, "cycles": 1e3}}, "output": {"plots": false}})").empty());
 }
 
-TEST_CASE("gross-slip wear says the specimen's scar is the shared profile's where its own frame is not computed") {
-  // examples/gross_slip_displacement_wear.json, shortened: U = 24 µm each way, cells of 1.2 µm.
-  const std::string gross = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
-    "load": {"P": 18500, "control": "displacement", "delta": 25e-6},
-    "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
-    "output": {"plots": false}, "effects": {"wear": {"k": 5e-14, "cycles": 2000, "pad_fraction": )";
-  // Under the stepper "explicit" both bodies share one profile (engine/wear_stage.hpp, bodies_in_own_frames).
-  CHECK(warning_codes(gross + R"(0.5, "stepper": "explicit"}}})") ==
-        std::set<std::string>{"gross_slip_shared_scar"});
-  // The default stepper tracks each body in its own frame: nothing to warn of.
-  CHECK(warning_codes(gross + "0.5}}}").empty());
-  // Only the pad wears: its frame is the one computed.
-  CHECK(warning_codes(gross + "1.0}}}").empty());
-  // Dissimilar bodies (a titanium specimen) are tracked in their own frames too, each position's pressure solved
-  // for both sliding directions.
-  std::string dissimilar = gross + "0.5}}}";
-  dissimilar.replace(dissimilar.find(kMaterials), kMaterials.size(),
-                     R"("name": "s", "materials": {"pad": {"E": 2e11, "nu": 0.3}, "specimen": {"E": 1.1e11, "nu": 0.34}})");
-  CHECK(warning_codes(dissimilar).empty());
-  // A stroke under half a cell (δ = 1 µm, past the stick limit of 0.68 µm: the bodies slide 0.32 µm each way, the
-  // cells are 4.7 µm): the frames differ by less than a cell.
-  const std::string partial = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
-    "load": {"P": 18500, "control": "displacement", "delta": 1e-6},
-    "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
-    "output": {"plots": false}, "effects": {"wear": {"k": 5e-14, "cycles": 2000}}})";
-  CHECK(warning_codes(partial).count("gross_slip_shared_scar") == 0);
-}
-
 TEST_CASE("a gross-slip wear run whose contact would reach the window's end is refused before it starts") {
   // The gross-slip example with 2e6 cycles: the flat that holds the worn area reaches ±0.6 mm at about 2.66e5
   // cycles (the run, let go, stopped there with an error at 2.61e5, having written nothing).

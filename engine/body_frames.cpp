@@ -25,6 +25,13 @@ FramePositions frame_positions(double U, double h) {
   return f;
 }
 
+std::vector<double> mid_stroke(std::span<const double> z) {
+  const std::size_t n = z.size() / 2;
+  std::vector<double> w(n);
+  for (std::size_t i = 0; i < n; ++i) w[i] = z[i] + z[n + i];
+  return w;
+}
+
 BodyFrames::BodyFrames(const Model& model, double P, double f, double c_pad, double c_specimen, Respond respond,
                        Amplitude amplitude)
     : model_(model),
@@ -44,11 +51,6 @@ BodyFrames::BodyFrames(const Model& model, double P, double f, double c_pad, dou
         return o;
       }()) {}
 
-std::vector<double> BodyFrames::mid_stroke(std::span<const double> z) const {
-  std::vector<double> w(static_cast<std::size_t>(n_));
-  for (int i = 0; i < n_; ++i) w[std::size_t(i)] = z[std::size_t(i)] + z[std::size_t(n_ + i)];
-  return w;
-}
 
 double BodyFrames::respond(std::span<const double> z, wear::CycleResponse& out) {
   respond_(mid_stroke(z), out);
@@ -117,9 +119,9 @@ void BodyFrames::gap_at(std::span<const double> z, std::size_t k, std::span<cons
 }
 
 void BodyFrames::add_coupling(std::size_t m, std::span<const double> p, std::vector<double>& out) const {
-  std::vector<double> u(static_cast<std::size_t>(n_));
-  coupling_kernel_.apply(p, u, -sign(m) * coupling_);
-  for (int i = 0; i < n_; ++i) out[std::size_t(i)] += u[std::size_t(i)];
+  coupled_.resize(std::size_t(n_));
+  coupling_kernel_.apply(p, coupled_, -sign(m) * coupling_);
+  for (int i = 0; i < n_; ++i) out[std::size_t(i)] += coupled_[std::size_t(i)];
 }
 
 void BodyFrames::pressures(std::span<const double> z, std::vector<std::vector<double>>& p) {

@@ -79,6 +79,9 @@ inline constexpr int kFrameMemory = 6;                    // Anderson's mixing: 
 inline constexpr double kFrameSweepTolerance = 1e-10;     // β ≠ 0: a position's sweeps stop when p changes less
 inline constexpr int kFrameSweeps = 60;                   // (relative to max p), in at most this many
 
+// The gap's wear at mid-stroke, w_pad + w_spec, of z = [w_pad; w_spec] (2n values).
+std::vector<double> mid_stroke(std::span<const double> z);
+
 // The stroke seen by the frames: positions u_k (in cells, fractional) and their trapezoid weights (sum 1).
 struct FramePositions {
   std::vector<double> shift;   // u_k / Δx
@@ -103,8 +106,6 @@ class BodyFrames {
   BodyFrames(const Model& model, double P, double f, double c_pad, double c_specimen, Respond respond,
              Amplitude amplitude);
 
-  // The gap's wear at mid-stroke, w_pad + w_spec, of z = [w_pad; w_spec].
-  std::vector<double> mid_stroke(std::span<const double> z) const;
   // The cycle at mid-stroke on z (out), and the positions and slip the step lags from it; returns its sliding
   // amplitude U (m). lag() sets them again from a response and its U.
   double respond(std::span<const double> z, wear::CycleResponse& out);
@@ -155,6 +156,7 @@ class BodyFrames {
   FramePositions positions_;
   std::vector<double> s_;  // the slip lagged: the last response's slip_if_touching
   mutable std::vector<double> deposit_;  // rates()' scratch: one position's specimen wear before its deposit
+  mutable std::vector<double> coupled_;  // add_coupling()'s scratch: the sliding shear's gap
   long solves_ = 0, iterations_ = 0, cg_iterations_ = 0;
 };
 

@@ -138,12 +138,7 @@ void check_blocks_window(const Scene& scene, const Model& model, const NormalRes
   double area = 0.0;
   for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
     const LoadBlock& block = scene.blocks[b];
-    Scene one = scene;
-    one.blocks.clear();
-    one.Q_amplitude = block.Q_amplitude, one.Q_ratio = block.Q_ratio, one.delta = block.delta;
-    one.history = block.history;
-    one.control = block.delta ? LoadControl::displacement : LoadControl::force;
-    one.wear->cycles = block.cycles;
+    const Scene one = block_scene(scene, block);
     const CycleStage cycle = solve_cycle(one, model, normal);
     if (cycle.result.regime != Regime::gross_slip || cycle.result.slip_travelled.empty()) continue;
     const WearEstimate e = estimate_wear(one, model, cycle);

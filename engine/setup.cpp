@@ -160,11 +160,17 @@ CyclicLoad cyclic_load(const Scene& scene, const ElasticPair& pair) {
   return load;
 }
 
-CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlock& b) {
+Scene block_scene(const Scene& scene, const LoadBlock& b) {
   Scene one = scene;
+  one.blocks.clear();
   one.Q_amplitude = b.Q_amplitude, one.Q_ratio = b.Q_ratio, one.delta = b.delta, one.history = b.history;
   one.control = b.delta ? LoadControl::displacement : LoadControl::force;
-  return cyclic_load(one, pair);
+  if (one.wear) one.wear->cycles = b.cycles;
+  return one;
+}
+
+CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlock& b) {
+  return cyclic_load(block_scene(scene, b), pair);
 }
 
 CyclePlan plan_cycle(const Scene& scene, const ElasticPair& pair) {

@@ -51,7 +51,10 @@ struct CyclePlan {
 // The cyclic load of a scene with friction: P, Q_max, f, δ, and the bulk strain of the bulk stress (each history
 // point's too).
 CyclicLoad cyclic_load(const Scene& scene, const ElasticPair& pair);
-// The cyclic load of block b of load.blocks: the scene's, with the block's Q, δ or history in place of its own.
+// Block b of load.blocks as a scene of its own: the scene with the block's Q, δ or history (and control) in place
+// of its own, no blocks, and the block's cycles for the wear's.
+Scene block_scene(const Scene& scene, const LoadBlock& b);
+// The cyclic load of block b of load.blocks: block_scene's.
 CyclicLoad block_load(const Scene& scene, const ElasticPair& pair, const LoadBlock& b);
 
 // The plan of a scene with a tangential effect. Throws UnsupportedError where the route asked for cannot run the

@@ -559,7 +559,7 @@ void WearRun::record(const std::vector<double>& z, double cycles) {
     rec.w_pad.assign(z.begin(), z.begin() + n);
     rec.w_specimen.assign(z.begin() + n, z.end());
   }
-  const std::vector<double> state = frames_ ? frames_->mid_stroke(z) : z;
+  const std::vector<double> state = frames_ ? mid_stroke(z) : z;
   wear::CycleResponse r;
   contact_.respond(state, r);
   rec.cycles = cycles;
@@ -825,11 +825,6 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
   // then.
   const bool frames_allowed = effect.pad_fraction < 1.0;
   std::vector<double> z;
-  const auto mid_stroke = [n](const std::vector<double>& zz) {
-    std::vector<double> out(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) out[std::size_t(i)] = zz[std::size_t(i)] + zz[std::size_t(n + i)];
-    return out;
-  };
   double start = 0.0;
   stage.route = "incremental (load.blocks)";
   long cycle_solves = 0, cycle_iterations = 0, implicit_solves = 0, implicit_iterations = 0;

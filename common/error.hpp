@@ -26,6 +26,14 @@ class ConvergenceError : public Error {
   using Error::Error;
 };
 
+// A stop asked for while the run computes (Ctrl-C, SIGTERM, Python's KeyboardInterrupt) outside the wear stage,
+// which stops at a step boundary and keeps what it reached; here the run ends with nothing of it kept. The command
+// line exits with 128 + the signal's number.
+class StopRequested : public Error {
+ public:
+  using Error::Error;
+};
+
 // A scene asks for something fretwear cannot compute yet (a route or regime not built). Exit status 2.
 class UnsupportedError : public InputError {
  public:

@@ -94,12 +94,13 @@ double crack_position(const CrackEffect& effect, const NormalResult& normal) {
 }
 
 std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const NormalResult& normal,
-                              const CycleStage* cycle, const WearStage* wear) {
+                              const CycleStage* cycle, const WearStage* wear, const StopCheck& stop) {
   const CrackEffect& c = *scene.crack;
   const double x = crack_position(c, normal);
   if (!wear) return crack_sifs(model.grid, cycle_phases(scene, normal, cycle), x, c, 0.0);
   std::vector<SifSet> sifs;
   for (const WearRecord& rec : wear->records) {
+    stop_point(stop, "crack");
     auto sets = crack_sifs(model.grid, cycle_phases(scene, rec.p, &rec.q), x, c, rec.cycles);
     sifs.insert(sifs.end(), sets.begin(), sets.end());
   }

@@ -13,6 +13,7 @@
 #include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
+#include "engine/stop.hpp"
 #include "engine/wear_stage.hpp"
 
 namespace fretwear {
@@ -30,9 +31,10 @@ std::vector<SifSet> crack_sifs(const Grid& grid, const std::vector<Phase>& phase
 // Where the crack is (m): an end of the contact under P alone, or the position given.
 double crack_position(const CrackEffect& effect, const NormalResult& normal);
 
-// The stage: the SIFs at crack_position() for the unworn contact, or for every wear record.
+// The stage: the SIFs at crack_position() for the unworn contact, or for every wear record; `stop` is asked before
+// each record (stop_point()).
 std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const NormalResult& normal,
-                              const CycleStage* cycle, const WearStage* wear);
+                              const CycleStage* cycle, const WearStage* wear, const StopCheck& stop = {});
 
 // Its part of summary.json: "crack" (the SIFs of the last state, one per length, at the top and the bottom).
 nlohmann::json summarise_crack(const Scene& scene, const std::vector<SifSet>& sifs, double x);

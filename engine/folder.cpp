@@ -119,6 +119,16 @@ fs::path output_folder(const Scene& scene, OutputCommand command) {
 std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path& scene_file, OutputCommand command) {
   std::vector<std::string> problems;
   const fs::path& dir = scene.output_dir;
+  // The folder's path is written into summary.json and the report, which hold UTF-8 text only (a Python caller can
+  // give any bytes).
+  try {
+    (void)json(dir.string()).dump();
+  } catch (const json::type_error&) {
+    problems.push_back(fmt::format("output.dir: {} is not UTF-8 text, which summary.json and the report hold; give "
+                                   "a path in UTF-8",
+                                   json(dir.string()).dump(-1, ' ', false, json::error_handler_t::replace)));
+    return problems;
+  }
   fs::path last = dir;
   if (!last.has_filename()) last = last.parent_path();  // "output/x/" names the folder x
   if (last.filename() == "." || last.filename() == ".." || dir.empty()) {

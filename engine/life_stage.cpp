@@ -267,7 +267,7 @@ SwtResult line_swt(const Grid& grid, const std::vector<Phase>& phases, double x,
 }
 
 LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
-                   const WearStage* wear) {
+                   const WearStage* wear, const StopCheck& stop) {
   const LifeEffect& effect = *scene.life;
   const std::vector<State> states = life_states(scene, normal, cycle, wear);
   LifeStage stage;
@@ -277,6 +277,7 @@ LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& n
     stage.initiation->singular = singular_edges(normal, &cycle, wear, {}).at(stage.initiation->x, 0.0);
     N_start = stage.initiation->cycles;
   }
+  stop_point(stop, "life");
   if (!effect.growth) {
     stage.total_cycles = N_start;
     stage.fate = N_start <= effect.cycles_max ? "initiation" : "runout";

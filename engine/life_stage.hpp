@@ -38,6 +38,7 @@
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
+#include "engine/stop.hpp"
 #include "engine/wear_stage.hpp"
 
 namespace fretwear {
@@ -70,9 +71,10 @@ struct LifeStage {
   double final_length = 0.0;  // m (0 without growth)
 };
 
-// The stage, over the unworn contact (wear null) or every wear record.
+// The stage, over the unworn contact (wear null) or every wear record; `stop` is asked between initiation and growth
+// (stop_point()).
 LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
-                   const WearStage* wear);
+                   const WearStage* wear, const StopCheck& stop = {});
 
 // SWT_ℓ of the line method at surface point x and depth d below it, for a cycle's phases (its top and bottom): the
 // critical-plane SWT of the stresses averaged over [d, d + ℓ] (sampled at 48 depths graded toward d = 0); the

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <thread>
 #include <utility>
 
@@ -43,7 +44,8 @@ volatile std::sig_atomic_t g_signal = 0;
 
 extern "C" void on_signal(int sig) { g_signal = sig; }
 
-// SIGINT and SIGTERM ask the wear run to stop at its next step boundary; a second one ends the program at once
+// SIGINT and SIGTERM ask the run to stop: a wear run at its next step boundary, with what it reached written; any
+// other stage at its next part (WearControl::stop_now), with nothing written. A second one ends the program at once
 // (SA_RESETHAND: the default action), the last checkpoint kept.
 void catch_stop_signals() {
   struct sigaction sa {};
@@ -289,8 +291,15 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
       return g_signal != 0;
     };
     if (progress.enabled()) control.progress = [&progress](const WearProgress& p) { progress.update(p); };
-    catch_stop_signals();
   }
+  // Outside the wear stage's step boundaries a stop ends the run with nothing written. Tests only:
+  // FRETWEAR_STOP_IN_STAGE=<stage> raises SIGINT where that stage first asks (a Ctrl-C there, exactly).
+  const char* stop_in = std::getenv("FRETWEAR_STOP_IN_STAGE");
+  control.stop_now = [stop_in](const char* stage) {
+    if (stop_in && std::string_view(stop_in) == stage && g_signal == 0) std::raise(SIGINT);
+    return g_signal != 0;
+  };
+  catch_stop_signals();
   // A scene refused while solving (a worn contact grown to the window's end) leaves nothing behind: not the
   // checkpoint, nor the folder made for it.
   std::error_code ec;
@@ -334,6 +343,16 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     progress.finish();
     if (!control.resume) forget_checkpoint();
     throw;
+  } catch (const StopRequested& e) {
+    progress.finish();
+    const bool checkpoint = !control.checkpoint.empty() && std::filesystem::exists(control.checkpoint, ec);
+    std::cerr << fmt::format("fretwear: {}: {} by signal {}; nothing written{}\n", scene.name, e.what(),
+                             int(g_signal),
+                             checkpoint ? fmt::format(" (the wear stage's checkpoint is kept: fretwear run --resume {} "
+                                                      "takes it up)",
+                                                      path)
+                                        : "");
+    return kExitSignal + int(g_signal);
   }
   return 0;
 }

@@ -31,7 +31,12 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
 // Appends j to s as compact JSON, stopping once s is longer than limit: every level writes a character before it
 // descends, so however deep j nests, the recursion is at most limit deep.
 void write_short(const json& j, std::string& s, std::size_t limit) {
-  const auto scalar = [](const json& v) { return v.dump(-1, ' ', true, json::error_handler_t::replace); };
+  // JSON has no NaN or infinity (a Python scene can hold them): named as they are, not as the null dump() writes.
+  const auto scalar = [](const json& v) -> std::string {
+    if (v.is_number_float() && !std::isfinite(v.get<double>()))
+      return std::isnan(v.get<double>()) ? "nan" : v.get<double>() > 0 ? "inf" : "-inf";
+    return v.dump(-1, ' ', true, json::error_handler_t::replace);
+  };
   if (j.is_array() || j.is_object()) {
     s += j.is_array() ? '[' : '{';
     bool first = true;
@@ -55,7 +60,7 @@ std::string describe(const json& j) {
 
 const char* type_name(const json& j) {
   switch (j.type()) {
-    case json::value_t::null: return "null";
+    case json::value_t::null: return "not a value";
     case json::value_t::boolean: return "a boolean";
     case json::value_t::string: return "a string";
     case json::value_t::array: return "an array";

@@ -37,10 +37,13 @@ RunResult Simulation::run(const WearControl* control) const {
   RunResult r;
   const Setup setup = make_setup(scene_);
   const Model& model = setup.model;
+  const StopCheck stop = control ? control->stop_now : StopCheck{};
   r.normal = solve_normal(scene_, model);
   r.timings.normal = seconds_since(t0);
-  if (setup.effects.cycle)
+  if (setup.effects.cycle) {
+    stop_point(stop, "tangential");
     r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
+  }
   if (setup.effects.wear)
     r.wear = timed(r.timings.wear,
                    [&] { return run_wear(scene_, model, r.normal, *r.cycle, control ? *control : WearControl{}); });
@@ -50,7 +53,8 @@ RunResult Simulation::run(const WearControl* control) const {
   const WearStage* wear = r.wear ? &*r.wear : nullptr;
   if (setup.effects.stress && reached)
     r.stress_maps = timed(r.timings.stress, [&] {
-      auto maps = run_stress(scene_, model, r.normal, cycle, wear);
+      stop_point(stop, "stress");
+      auto maps = run_stress(scene_, model, r.normal, cycle, wear, stop);
       if (setup.effects.fatigue)  // the fatigue measures from each state's top and bottom maps
         r.fatigue =
             run_fatigue(scene_, model.grid, record_phases(scene_, r.normal, cycle, wear), maps, *cycle, wear);
@@ -58,10 +62,14 @@ RunResult Simulation::run(const WearControl* control) const {
     });
   if (setup.effects.crack && reached) {
     r.crack_x = crack_position(*scene_.crack, r.normal);
-    r.sifs = timed(r.timings.crack, [&] { return run_crack(scene_, model, r.normal, cycle, wear); });
+    stop_point(stop, "crack");
+    r.sifs = timed(r.timings.crack, [&] { return run_crack(scene_, model, r.normal, cycle, wear, stop); });
   }
   if (setup.effects.life && reached)
-    r.life = timed(r.timings.life, [&] { return run_life(scene_, model, r.normal, *cycle, wear); });
+    r.life = timed(r.timings.life, [&] {
+      stop_point(stop, "life");
+      return run_life(scene_, model, r.normal, *cycle, wear, stop);
+    });
   r.timings.total = seconds_since(t0);
   r.warnings = result_warnings(scene_, r);
   return r;

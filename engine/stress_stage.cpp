@@ -100,7 +100,8 @@ Stress surface_stress(const SurfaceTractions& t, const Grid& grid, double x) {
 }
 
 std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
-                                   double depth, const StressEffect& effect, double cycles, int stride) {
+                                   double depth, const StressEffect& effect, double cycles, int stride,
+                                   const StopCheck& stop) {
   // The full map's points: nx across; the surface and ny rows at (j + ½) depth / ny below it.
   std::vector<double> x_all, y_all{0.0};
   for (int i = 0; i < effect.nx; ++i) x_all.push_back(x_lo + (x_hi - x_lo) * i / (effect.nx - 1));
@@ -115,6 +116,7 @@ std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& p
     for (std::size_t j : strided(int(y_all.size()), stride)) m.y.push_back(y_all[j]);
     m.sigma.resize(m.x.size() * m.y.size());
     for (std::size_t i = 0; i < m.x.size(); ++i) {
+      stop_point(stop, "stress");
       auto column = stress_along_depth(t, m.x[i], m.y);
       column.front() = surface_stress(t, grid, m.x[i]);  // the first row, y = 0
       for (std::size_t j = 0; j < m.y.size(); ++j) m.sigma[j * m.x.size() + i] = column[j];
@@ -143,7 +145,7 @@ std::vector<Phase> final_phases(const Scene& scene, const NormalResult& normal, 
 }
 
 std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const NormalResult& normal,
-                                  const CycleStage* cycle, const WearStage* wear) {
+                                  const CycleStage* cycle, const WearStage* wear, const StopCheck& stop) {
   const double xl = normal.zones.front().left.x, xr = normal.zones.back().right.x, half = 0.5 * (xr - xl);
   const double depth = scene.stress->depth > 0.0 ? scene.stress->depth : half;
   const std::vector<RecordPhases> states = record_phases(scene, normal, cycle, wear);
@@ -151,7 +153,7 @@ std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const 
   for (std::size_t k = 0; k < states.size(); ++k) {
     const int stride = k + 1 == states.size() ? 1 : kRecordStride;
     auto maps = stress_maps(model.grid, states[k].phases, xl - 0.5 * half, xr + 0.5 * half, depth, *scene.stress,
-                            states[k].cycles, stride);
+                            states[k].cycles, stride, stop);
     out.insert(out.end(), std::make_move_iterator(maps.begin()), std::make_move_iterator(maps.end()));
   }
   return out;

@@ -16,6 +16,7 @@
 #include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
+#include "engine/stop.hpp"
 #include "engine/wear_stage.hpp"
 
 namespace fretwear {
@@ -41,8 +42,10 @@ inline constexpr int kRecordStride = 2;
 // The surface stresses at x (y = 0): linear between the two nearest cell centres (the source says why).
 Stress surface_stress(const SurfaceTractions& t, const Grid& grid, double x);
 
+// `stop` is asked before each column (stop_point()).
 std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
-                                   double depth, const StressEffect& effect, double cycles = 0.0, int stride = 1);
+                                   double depth, const StressEffect& effect, double cycles = 0.0, int stride = 1,
+                                   const StopCheck& stop = {});
 
 // The loads of one recorded state: the cycle's top and bottom (or the loaded state without a cycle).
 struct RecordPhases {
@@ -62,8 +65,9 @@ std::vector<Phase> final_phases(const Scene& scene, const NormalResult& normal, 
 // The stage: the maps over the contact and half its width on either side, down to effects.stress.depth (the contact
 // half-width when 0), of every state of record_phases(), in its order, each state's phases together; the last state
 // on the full map, the earlier ones with stride kRecordStride.
+// `stop` is asked before each column of each map (stop_point()).
 std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const NormalResult& normal,
-                                  const CycleStage* cycle, const WearStage* wear);
+                                  const CycleStage* cycle, const WearStage* wear, const StopCheck& stop = {});
 
 // The maps of the last state in `maps` (run_stress's order).
 std::vector<StressMap> last_record(const std::vector<StressMap>& maps);

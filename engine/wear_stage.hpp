@@ -21,6 +21,7 @@
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
+#include "engine/stop.hpp"
 
 namespace fretwear {
 
@@ -146,6 +147,9 @@ struct WearControl {
   // Asked at every boundary, with where the run stands: true stops the run there (a checkpoint is written). May be
   // empty.
   std::function<bool(const WearProgress&)> stop_requested;
+  // Asked between the stages, and within the stress, crack and life stages between their parts (a map's columns, a
+  // record's cracks, initiation and growth): true ends the run there with StopRequested (engine/stop.hpp).
+  StopCheck stop_now;
   std::filesystem::path checkpoint;                   // where checkpoints go; empty: none
   double checkpoint_interval = 60.0;                  // seconds between checkpoints between records (0: every step)
   std::uint64_t scene_hash = 0;                       // scene_hash(scene), stored in the checkpoint

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -18,11 +19,31 @@ std::string type_name(py::handle value) { return py::str(py::type::handle_of(val
 // The path of a member as the scene parser writes it: "load.Q.ratio", "profile.parts[1].radius".
 std::string member(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
-json convert(py::handle value, const std::string& path, std::size_t depth, std::vector<std::string>& problems) {
+// A str as UTF-8; none for one holding surrogates (os.fsdecode's of bytes that were not UTF-8).
+std::optional<std::string> utf8(py::handle s) {
+  Py_ssize_t size = 0;
+  const char* data = PyUnicode_AsUTF8AndSize(s.ptr(), &size);
+  if (!data) {
+    PyErr_Clear();
+    return std::nullopt;
+  }
+  return std::string(data, std::size_t(size));
+}
+
+struct Problems {
+  std::vector<std::string>& text;
+  std::vector<std::string>& nulled;
+};
+
+json convert(py::handle value, const std::string& path, std::size_t depth, Problems& problems) {
   const std::string where = path.empty() ? "(top)" : path;
+  const auto null_with = [&](std::string problem) {
+    problems.text.push_back(std::move(problem));
+    problems.nulled.push_back(where);
+    return json(nullptr);
+  };
   if (depth > kMaxSceneDepth) {
-    problems.push_back(fmt::format("{}: nested deeper than {} levels; a scene needs about 20", where, kMaxSceneDepth));
-    return nullptr;
+    return null_with(fmt::format("{}: nested deeper than {} levels; a scene needs about 20", where, kMaxSceneDepth));
   }
   if (value.is_none()) return nullptr;
   // bool before int: Python's bool is an int.
@@ -37,22 +58,29 @@ json convert(py::handle value, const std::string& path, std::size_t depth, std::
       if (!PyErr_Occurred()) return u;
       PyErr_Clear();
     }
-    problems.push_back(fmt::format("{}: the integer {} does not fit in 64 bits; give a float", where,
-                                   std::string(py::str(value))));
-    return nullptr;
+    return null_with(fmt::format("{}: the integer {} does not fit in 64 bits; give a float", where,
+                                 std::string(py::str(value))));
   }
   if (py::isinstance<py::float_>(value)) return value.cast<double>();
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::str>(value)) {
+    if (const std::optional<std::string> text = utf8(value)) return *text;
+    return null_with(fmt::format("{}: the string {} is not UTF-8 text; give text", where, std::string(py::repr(value))));
+  }
   if (py::isinstance<py::dict>(value)) {
     json object = json::object();
     for (const auto& [k, v] : value.cast<py::dict>()) {
       if (!py::isinstance<py::str>(k)) {
-        problems.push_back(fmt::format("{}: the key {} is a {}; keys are str", where, std::string(py::repr(k)),
-                                       type_name(k)));
+        problems.text.push_back(fmt::format("{}: the key {} is a {}; keys are str", where, std::string(py::repr(k)),
+                                            type_name(k)));
         continue;
       }
-      const std::string key = k.cast<std::string>();
-      object[key] = convert(v, member(path, key), depth + 1, problems);
+      const std::optional<std::string> key = utf8(k);
+      if (!key) {
+        problems.text.push_back(fmt::format("{}: the key {} is not UTF-8 text; give text", where,
+                                            std::string(py::repr(k))));
+        continue;
+      }
+      object[*key] = convert(v, member(path, *key), depth + 1, problems);
     }
     return object;
   }
@@ -62,19 +90,22 @@ json convert(py::handle value, const std::string& path, std::size_t depth, std::
     for (const auto& v : value) array.push_back(convert(v, fmt::format("{}[{}]", path, i++), depth + 1, problems));
     return array;
   }
-  // numpy's scalars (numpy.float64, numpy.int64, numpy.bool_) by what they are.
+  // numpy's scalars (numpy.float64, numpy.int64, numpy.bool_, numpy.longdouble) by what they are, as Python's own
+  // int and float (a longdouble rounded to double: item() would give a longdouble back).
   const py::module_ numpy = py::module_::import("numpy");
   if (py::isinstance(value, numpy.attr("bool_"))) return value.attr("item")().cast<bool>();
-  if (py::isinstance(value, numpy.attr("integer")) || py::isinstance(value, numpy.attr("floating")))
-    return convert(value.attr("item")(), path, depth, problems);
-  problems.push_back(fmt::format("{}: a {} is not a JSON value; give a dict, list, str, number, bool or None", where,
-                                 type_name(value)));
-  return nullptr;
+  if (py::isinstance(value, numpy.attr("integer"))) return convert(py::int_(py::reinterpret_borrow<py::object>(value)), path, depth + 1, problems);
+  if (py::isinstance(value, numpy.attr("floating"))) return convert(py::float_(py::reinterpret_borrow<py::object>(value)), path, depth + 1, problems);
+  return null_with(fmt::format("{}: a {} is not a JSON value; give a dict, list, str, number, bool or None", where,
+                               type_name(value)));
 }
 
 }  // namespace
 
-json to_json(py::handle value, std::vector<std::string>& problems) { return convert(value, "", 0, problems); }
+json to_json(py::handle value, std::vector<std::string>& problems, std::vector<std::string>& nulled) {
+  Problems p{problems, nulled};
+  return convert(value, "", 0, p);
+}
 
 py::object to_python(const json& j) {
   switch (j.type()) {

@@ -1,5 +1,6 @@
 // The Python module fretwear (docs/PYTHON.md): the command line's run, validate and defaults on scenes held as dicts,
 // results in memory with numpy arrays, files only where asked.
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <filesystem>
@@ -69,20 +70,38 @@ struct SceneArgument {
   fs::path scene_file;
 };
 
+// A path as str, bytes or os.PathLike, as the file system takes it: its bytes (os.fsencode), whatever their encoding.
+fs::path path_argument(py::handle arg) {
+  return fs::path(py::module_::import("os").attr("fsencode")(arg).cast<py::bytes>().cast<std::string>());
+}
+
 SceneArgument scene_argument(py::handle arg) {
   const py::module_ os = py::module_::import("os");
   try {
-    if (py::isinstance<py::str>(arg) || py::isinstance(arg, os.attr("PathLike"))) {
-      const fs::path path = py::str(os.attr("fspath")(arg)).cast<std::string>();
+    if (py::isinstance<py::str>(arg) || py::isinstance<py::bytes>(arg) || py::isinstance(arg, os.attr("PathLike"))) {
+      const fs::path path = path_argument(arg);
       return {load_scene(path), path};
     }
     if (!py::isinstance<py::dict>(arg))
       raise_scene_error({fmt::format("(top): the scene is a {}; give a dict (or the path of a scene file)",
                                      std::string(py::str(py::type::handle_of(arg).attr("__name__"))))});
-    std::vector<std::string> problems;
-    const json j = to_json(arg, problems);
-    if (!problems.empty()) raise_scene_error(problems);
-    return {parse_scene(j), {}};
+    std::vector<std::string> problems, nulled;
+    const json j = to_json(arg, problems, nulled);
+    if (problems.empty()) return {parse_scene(j), {}};
+    // A value no JSON holds is null in j: the parser still reports the scene's other problems, all but its own
+    // about those paths and what lies under them.
+    try {
+      parse_scene(j);
+    } catch (const SceneError& e) {
+      for (const std::string& p : e.problems()) {
+        const std::string path = p.substr(0, p.find(": "));
+        const bool covered = std::any_of(nulled.begin(), nulled.end(), [&](const std::string& at) {
+          return at == "(top)" || path == at || path.starts_with(at + ".") || path.starts_with(at + "[");
+        });
+        if (!covered) problems.push_back(p);
+      }
+    }
+    raise_scene_error(problems);
   } catch (const SceneError& e) {
     raise_scene_error(e.problems());
   }
@@ -91,7 +110,7 @@ SceneArgument scene_argument(py::handle arg) {
 // The folder an `output` argument names; scene.output_dir is replaced by it.
 std::optional<fs::path> output_argument(py::handle output) {
   if (output.is_none()) return std::nullopt;
-  return fs::path(py::str(py::module_::import("os").attr("fspath")(output)).cast<std::string>());
+  return path_argument(output);
 }
 
 void warn(const std::vector<Warning>& warnings) {
@@ -120,12 +139,16 @@ class Result {
   }
 };
 
-// The wear stage's stop hook: at each step boundary, Python's pending signals are run (with the GIL taken for that
-// moment). A handler that raises (Ctrl-C's KeyboardInterrupt) stops the run there; the exception is kept and raised
-// once the run has returned.
+// The run's stop hooks: at each step boundary of the wear stage and between the parts of the others
+// (WearControl::stop_now), Python's pending signals are run (with the GIL taken for that moment). A handler that
+// raises (Ctrl-C's KeyboardInterrupt) stops the run there; the exception is kept and raised once the run has
+// returned.
 class SignalCheck {
  public:
-  bool operator()(const WearProgress&) {
+  bool operator()(const WearProgress&) { return check(); }
+  bool operator()(const char*) { return check(); }
+
+  bool check() {
     py::gil_scoped_acquire acquire;
     if (PyErr_CheckSignals() == 0) return false;
     *pending_ = py::error_already_set();
@@ -148,6 +171,7 @@ Result run(py::handle scene_arg, py::handle output_arg) {
   SignalCheck check;
   WearControl control;
   control.stop_requested = check;
+  control.stop_now = check;
   RunResult result;
   json summary;
   std::string failure;  // a ConvergenceError's or an InputError's message, raised with the GIL held
@@ -179,6 +203,7 @@ Result run(py::handle scene_arg, py::handle output_arg) {
       }
     } catch (const InputError& e) {  // found while solving: a worn contact grown to the window's end
       failure = e.what();
+    } catch (const StopRequested&) {  // the pending exception below says why
     }
   }
   if (check.pending_->has_value()) {

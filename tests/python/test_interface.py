@@ -2,6 +2,7 @@
 with it as the command line writes it, defaults and the version as the command line gives them, documented units."""
 import json
 import os
+import pathlib
 
 import numpy
 import pytest
@@ -50,6 +51,33 @@ def test_values_that_are_not_json_are_problems_with_their_paths():
     scene = example("hertz_normal", **{"load.P": numpy.float64(1e5), "grid.cells": numpy.int64(256)})
     assert fretwear.validate(scene) == []
     assert fretwear.validate([1, 2]) == ["(top): the scene is a list; give a dict (or the path of a scene file)"]
+
+
+def test_every_numpy_scalar_is_its_number_and_nothing_hides_the_other_problems():
+    # numpy.longdouble's item() is a longdouble again: taken as a float, not followed round forever.
+    scene = example("hertz_normal", **{"load.P": numpy.longdouble(1e5), "grid.cells": numpy.uint16(256)})
+    assert fretwear.validate(scene) == []
+    # A value no JSON holds is reported with the scene's other problems, once, at its own path.
+    problems = fretwear.validate({"load": {"P": 1 + 0j}, "name": "\udcff"})
+    assert problems[0] == "load.P: a complex is not a JSON value; give a dict, list, str, number, bool or None"
+    assert problems[1].startswith("name: the string '\\udcff' is not UTF-8 text")
+    assert any(p.startswith("materials: missing") for p in problems), problems
+    assert not any(p.startswith("load.P: null") for p in problems), problems
+    # Not a number and nothing at all are named as what they are.
+    assert "load.P: nan is not allowed; give a normal load" in fretwear.validate(example("hertz_normal", **{"load.P": float("nan")}))[0]
+    assert fretwear.validate(example("hertz_normal", **{"load.P": None}))[0].startswith("load.P: null is not a value")
+
+
+def test_paths_may_be_bytes_and_an_output_path_must_be_utf8(in_empty_folder):
+    scene = example("hertz_normal", **{"grid.cells": 128})
+    (in_empty_folder / "s.json").write_text(json.dumps(scene))
+    assert fretwear.run(b"s.json").summary["status"] == "completed"
+    result = fretwear.run(scene, output=b"out")
+    assert result.output == pathlib.Path("out") and (in_empty_folder / "out" / "summary.json").exists()
+    with pytest.raises(fretwear.SceneError) as caught:
+        fretwear.run(scene, output=os.fsdecode(b"out\xff"))
+    assert caught.value.problems[0].startswith("output.dir: ") and "is not UTF-8 text" in caught.value.problems[0]
+    assert files_under(in_empty_folder) == sorted(["s.json", "out", *(f"out/{f}" for f in os.listdir("out"))])
 
 
 def test_the_physics_checks_before_solving_are_the_command_lines():

@@ -1,5 +1,6 @@
-"""Ctrl-C during a long wear run raises KeyboardInterrupt at the next step boundary, writes nothing, and leaves the
-module ready for the next run; meanwhile the solve holds no GIL, so Python's other threads run."""
+"""Ctrl-C during a long wear run raises KeyboardInterrupt at the next step boundary, and during a long stress stage
+before its next column of the map; either writes nothing and leaves the module ready for the next run; meanwhile the
+solve holds no GIL, so Python's other threads run."""
 import os
 import signal
 import threading
@@ -20,18 +21,31 @@ STOP_WITHIN_S = 5.0
 TICKS_WITHOUT_GIL = 8
 
 
-def test_ctrl_c_stops_a_long_wear_run_cleanly(in_empty_folder):
+def stops_cleanly(scene, folder):
+    """SIGINT DELAY_S into the run raises KeyboardInterrupt within STOP_WITHIN_S; nothing written; the next run runs."""
     timer = threading.Timer(DELAY_S, os.kill, (os.getpid(), signal.SIGINT))
     start = time.monotonic()
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            fretwear.run(LONG, output=in_empty_folder / "out")
+            fretwear.run(scene, output=folder / "out")
     finally:
         timer.cancel()
     assert time.monotonic() - start < DELAY_S + STOP_WITHIN_S
-    assert list(in_empty_folder.iterdir()) == []
+    assert list(folder.iterdir()) == []
     assert fretwear.run(example("hertz_normal")).summary["status"] == "completed"
+
+
+def test_ctrl_c_stops_a_long_wear_run_cleanly(in_empty_folder):
+    stops_cleanly(LONG, in_empty_folder)
+
+
+# hertz_cycle with a stress map of 401 x 401 points on 2048 cells: some ten seconds in the stress stage alone.
+LONG_STRESS = example("hertz_cycle", **{"effects.stress": {"nx": 401, "ny": 400}})
+
+
+def test_ctrl_c_stops_a_long_stress_stage_cleanly(in_empty_folder):
+    stops_cleanly(LONG_STRESS, in_empty_folder)
 
 
 def test_other_threads_run_while_it_solves():

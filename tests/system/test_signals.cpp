@@ -63,3 +63,37 @@ TEST_CASE("SIGINT once during a wear run: exit 130, and run --resume completes")
 TEST_CASE("SIGINT twice in quick succession: no temporary file, and run --resume completes") {
   interrupt(2);
 }
+
+// A stop outside the wear stage's step boundaries: in the stages after it (stress, crack, life) the run ends at
+// their next part with exit 130 and nothing written, and the results already in output.dir stay as they were; the
+// wear's checkpoint is kept, and `run --resume` gives the uninterrupted results. FRETWEAR_STOP_IN_STAGE=<stage>
+// raises SIGINT where that stage first asks (main.cpp).
+TEST_CASE("SIGINT in the stages after the wear: exit 130, nothing written, the earlier results kept") {
+  Scratch s;
+  json scene = wear_scene();
+  scene["effects"]["stress"] = {{"nx", 41}, {"ny", 20}};
+  scene["effects"]["crack"] = {{"lengths", {1e-5, 2e-5}}};
+  scene["effects"]["life"] = json::parse(R"({"initiation": {"sigma_f": 1.817e9, "b": -0.08, "eps_f": 0.35, "c": -0.52,
+      "critical_distance": 2e-5}, "growth": {"C": 5e-30, "m": 3.0, "dK_th": 2e6, "a_final": 1e-3}})");
+  s.write("w.json", scene.dump());
+  const Outcome first = s.fretwear({"run", "w.json", "-q"});
+  REQUIRE_MESSAGE(first.exited(kDone), first.describe());
+  Snapshot done = s.snapshot();
+  for (const char* stage : {"stress", "crack", "life"}) {
+    CAPTURE(stage);
+    const Outcome r = s.fretwear({"run", "w.json"}, {{"FRETWEAR_STOP_IN_STAGE", stage}});
+    CHECK_MESSAGE(r.exited(kInterrupted), "want exit 130, got " << r.describe());
+    CHECK(r.err.find(std::string("stopped in the ") + stage + " stage by signal 2; nothing written") !=
+          std::string::npos);
+    const Snapshot stopped = s.snapshot();
+    // Only the wear's checkpoint beside the results may be new; nothing else differs.
+    std::vector<std::string> differ;
+    for (const auto& line : changes(done, stopped))
+      if (line.find(".checkpoint") == std::string::npos) differ.push_back(line);
+    CHECK_MESSAGE(differ.empty(), "changed: " << join(differ));
+    const Outcome resumed = s.fretwear({"run", "--resume", "w.json", "-q"});
+    CHECK_MESSAGE(resumed.exited(kDone), resumed.describe());
+    done = s.snapshot();
+    CHECK(done.count("home/work/output/h/summary.json") == 1);
+  }
+}

@@ -17,6 +17,7 @@
 
 #include "common/error.hpp"
 #include "engine/deferred_signals.hpp"
+#include "engine/folder.hpp"
 #include "engine/version.hpp"
 
 namespace fretwear {
@@ -28,6 +29,101 @@ std::filesystem::path checkpoint_path(const Scene& scene) {
   if (!p.has_filename()) p = p.parent_path();  // "output/x/" names the folder x
   p += ".checkpoint";
   return p;
+}
+
+namespace {
+
+// Reads a CBOR document until its top-level key `format` has given its value; stops at anything else.
+class FormatProbe : public nlohmann::json_sax<json> {
+ public:
+  bool is_checkpoint = false;
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t& s) override {
+    if (depth_ == 1 && at_format_) {
+      is_checkpoint = s == "fretwear-checkpoint";
+      return false;
+    }
+    return value();
+  }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override {
+    if (depth_ == 1) at_format_ = false;
+    ++depth_;
+    return true;
+  }
+  bool key(string_t& k) override {
+    if (depth_ == 1) at_format_ = k == "format";
+    return true;
+  }
+  bool end_object() override { return --depth_ > 0; }
+  bool start_array(std::size_t) override {
+    if (depth_ == 0) return false;  // a checkpoint is a map
+    if (depth_ == 1) at_format_ = false;
+    ++depth_;
+    return true;
+  }
+  bool end_array() override { return --depth_ > 0; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+ private:
+  // A value at the top is no map; a value of another top-level key moves on.
+  bool value() {
+    if (depth_ == 0) return false;
+    if (depth_ == 1) at_format_ = false;
+    return true;
+  }
+  int depth_ = 0;
+  bool at_format_ = false;
+};
+
+}  // namespace
+
+bool is_checkpoint_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  FormatProbe probe;
+  json::sax_parse(in, &probe, json::input_format_t::cbor, false);
+  return probe.is_checkpoint;
+}
+
+std::vector<std::string> checkpoint_problems(const Scene& scene) {
+  if (!scene.wear) return {};
+  const std::filesystem::path path = checkpoint_path(scene);
+  std::vector<std::string> problems;
+  const std::string beside = fmt::format("\"{}\", where a wear run into output.dir \"{}\" keeps its checkpoint "
+                                         "(<output.dir>.checkpoint)",
+                                         path.string(), scene.output_dir.string());
+  const std::size_t n = path.filename().native().size(), tmp = n + std::strlen(".tmp-") + std::size_t(kPidDigits);
+  if (const long max = name_max(path); tmp > std::size_t(max)) {
+    problems.push_back(fmt::format("output.dir: the checkpoint of a wear run into \"{}\", \"{}\", is written first "
+                                   "as \"<its name>.tmp-<process id>\", up to {} characters, and this file system "
+                                   "takes names of at most {}: give an output.dir whose last name is at most {} "
+                                   "characters",
+                                   scene.output_dir.string(), path.string(), tmp, max,
+                                   std::size_t(max) - (tmp - n) - std::strlen(".checkpoint")));
+    return problems;
+  }
+  std::error_code ec;
+  const auto status = std::filesystem::symlink_status(path, ec);
+  if (!std::filesystem::exists(status)) return problems;
+  if (!std::filesystem::is_regular_file(status))
+    problems.push_back(fmt::format("output.dir: {}, is {}, which the run would replace; move it away, or give "
+                                   "another output.dir",
+                                   beside,
+                                   std::filesystem::is_directory(status) ? "a folder"
+                                   : std::filesystem::is_symlink(status) ? "a symbolic link"
+                                                                         : "not a regular file"));
+  else if (!is_checkpoint_file(path))
+    problems.push_back(fmt::format("output.dir: {}, is a file fretwear did not write (not a fretwear checkpoint), "
+                                   "which the run would overwrite and then delete; move it away, or give another "
+                                   "output.dir",
+                                   beside));
+  return problems;
 }
 
 std::uint64_t scene_hash(const Scene& scene) {

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -34,6 +35,14 @@ inline constexpr int kCheckpointFormat = 1;
 
 // <output.dir>.checkpoint: beside the output folder, which is replaced only when a run completes.
 std::filesystem::path checkpoint_path(const Scene& scene);
+// Why a wear run of `scene` may not keep its checkpoint at checkpoint_path(scene) (empty: it may), each naming
+// output.dir: something there that is not a regular file, or a file that is not a fretwear checkpoint
+// (is_checkpoint_file()), which the run would overwrite and delete; a name too long for the file system once
+// ".tmp-<pid>" is added.
+std::vector<std::string> checkpoint_problems(const Scene& scene);
+// True when the file at `path` is a CBOR map whose `format` is "fretwear-checkpoint": a file fretwear wrote (of any
+// version or scene). Reads the file only as far as that key.
+bool is_checkpoint_file(const std::filesystem::path& path);
 // FNV-1a (64 bit) of the resolved scene's JSON: two scenes that resolve alike share a checkpoint.
 std::uint64_t scene_hash(const Scene& scene);
 // The checkpoint at `path` for this scene, or nothing when there is none. Throws InputError when the file is not a

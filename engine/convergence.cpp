@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "common/error.hpp"
 #include "contact/closed_form.hpp"
 #include "engine/simulation.hpp"
 
@@ -99,7 +100,20 @@ std::string ConvergenceStudy::csv() const {
   return s;
 }
 
+std::string grid_range_problem(int cells_from, int cells_to) {
+  if (cells_from > cells_to)
+    return fmt::format("--from {} is above --to {}; give --from at most --to (the coarsest grid, then the finest)",
+                       cells_from, cells_to);
+  if (const unsigned first = std::bit_ceil(unsigned(cells_from)); first > unsigned(cells_to))
+    return fmt::format("--from {} rounds up to {} cells (the grids are powers of two), above --to {}; give --to at "
+                       "least {}",
+                       cells_from, first, cells_to, first);
+  return "";
+}
+
 ConvergenceStudy run_convergence(const Scene& scene, int cells_from, int cells_to, std::ostream* progress) {
+  if (const std::string problem = grid_range_problem(cells_from, cells_to); !problem.empty())
+    throw InputError(problem);
   ConvergenceStudy study;
   if (scene.wear) study.not_studied.push_back("wear");
   if (scene.stress) study.not_studied.push_back("stress");

@@ -41,7 +41,12 @@ struct ConvergenceStudy {
   std::string csv() const;
 };
 
-// cells_from and cells_to are rounded to powers of two.
+// Why the grids from cells_from up to cells_to hold none (empty: they hold one at least). The grids are the powers
+// of two n with bit_ceil(cells_from) <= n <= cells_to; the message names --from and --to, as the command line does.
+std::string grid_range_problem(int cells_from, int cells_to);
+
+// The grids are the powers of two from bit_ceil(cells_from) to cells_to; throws InputError when there is none
+// (grid_range_problem()).
 ConvergenceStudy run_convergence(const Scene& scene, int cells_from, int cells_to, std::ostream* progress);
 
 }  // namespace fretwear

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include <fmt/format.h>
 #include <sys/stat.h>
@@ -38,10 +39,97 @@ bool ours(const fs::path& dir) {
   return fs::is_regular_file(dir / kOutputMarker, ec);
 }
 
-// Removes a folder of fretwear's own (marked); leaves anything else where it is.
+// Lends the owner every permission on `dir` (removing or moving an entry needs write permission on its folder, and
+// moving a folder into another one on the folder itself, whose `..` changes).
+void lend_owner_all(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::is_directory(fs::symlink_status(dir, ec)))
+    fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ec);
+}
+
+// Removes a folder of fretwear's own (marked), whatever permission bits its folders carry; leaves anything else
+// where it is.
 void remove_ours(const fs::path& dir) {
   std::error_code ec;
-  if (ours(dir)) fs::remove_all(dir, ec);
+  if (!ours(dir)) return;
+  lend_owner_all(dir);
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    lend_owner_all(it->path());  // before the iterator enters it
+  fs::remove_all(dir, ec);
+}
+
+// Moves the folder `from` to `to` (another folder), keeping its permission bits.
+void carry(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  const auto status = fs::symlink_status(from, ec);
+  if (!fs::exists(status)) return;
+  lend_owner_all(from);
+  fs::rename(from, to, ec);
+  if (fs::is_directory(status)) fs::permissions(ec ? from : to, status.permissions(), fs::perm_options::replace, ec);
+}
+
+// A symbolic link on the way to `given` (the path as the scene gives it), where the command meets it: refused when
+// it is the last part (the results folder is replaced as a whole: the link would be, not the folder it points to),
+// or when it dangles or loops (no folder can be made through it). False when a problem was found.
+bool link_problems(const fs::path& given, const std::string& what, std::vector<std::string>& problems) {
+  fs::path path = given;
+  if (!path.has_filename()) path = path.parent_path();  // "output/x/" names x
+  fs::path prefix;
+  for (auto part = path.begin(); part != path.end(); ++part) {
+    prefix /= *part;
+    struct stat st {};
+    if (::lstat(prefix.c_str(), &st) != 0) return true;  // missing from here on (made), or under a file (below)
+    if (!S_ISLNK(st.st_mode)) continue;
+    std::error_code ec;
+    const std::string to = fs::read_symlink(prefix, ec).string();
+    if (::stat(prefix.c_str(), &st) != 0) {
+      const int e = errno;
+      if (e == ENOENT)
+        problems.push_back(fmt::format("{}: \"{}\" is a symbolic link to \"{}\", which does not exist; give a path "
+                                       "without it, or make the folder it points to",
+                                       what, prefix.string(), to));
+      else if (e == ELOOP)
+        problems.push_back(fmt::format("{}: \"{}\" is a symbolic link that leads back to itself (to \"{}\"); give a "
+                                       "path without it",
+                                       what, prefix.string(), to));
+      else
+        problems.push_back(fmt::format("{}: the symbolic link \"{}\" (to \"{}\") cannot be followed ({}); give a path "
+                                       "without it",
+                                       what, prefix.string(), to, std::strerror(e)));
+      return false;
+    }
+    if (std::next(part) == path.end()) {
+      problems.push_back(fmt::format("{}: \"{}\" is a symbolic link (to \"{}\"); fretwear replaces its results folder "
+                                     "as a whole, which would replace the link: give the folder it points to, \"{}\"",
+                                     what, given.string(), to, resolved(prefix).string()));
+      return false;
+    }
+  }
+  return true;
+}
+
+// Names the file system takes: each part of `target` (absolute), and the staging folder's beside it.
+bool name_problems(const fs::path& target, const std::string& what, std::vector<std::string>& problems) {
+  const std::size_t max = std::size_t(name_max(target));
+  for (const auto& part : target)
+    if (part.native().size() > max) {
+      problems.push_back(fmt::format("{}: the name \"{}\" in \"{}\" is {} characters long; this file system takes "
+                                     "names of at most {}: give a shorter one",
+                                     what, part.string(), target.string(), part.native().size(), max));
+      return false;
+    }
+  const std::size_t n = target.filename().native().size(),
+                    staged = n + std::strlen(kStagingSuffix) + std::size_t(kPidDigits);
+  if (staged > max) {
+    problems.push_back(fmt::format("{}: the folder name \"{}\" is {} characters long; fretwear writes the results "
+                                   "beside it into \"<name>{}<process id>\", up to {} characters, and this file "
+                                   "system takes names of at most {}: give a name of at most {} characters",
+                                   what, target.filename().string(), n, kStagingSuffix, staged, max,
+                                   max - (staged - n)));
+    return false;
+  }
+  return true;
 }
 
 // 0 when a folder can be made in `dir`, else the errno that says why not. Permissions alone do not tell (root
@@ -75,6 +163,7 @@ void check_target(const fs::path& target, const std::string& what, const fs::pat
                                    target.native().size(), PATH_MAX - 1));
     return;
   }
+  if (!name_problems(target, what, problems)) return;
   const auto status = fs::status(target, ec);
   if (!fs::exists(status)) {
     // Made with its parents: the nearest folder that exists must take them.
@@ -98,10 +187,33 @@ void check_target(const fs::path& target, const std::string& what, const fs::pat
     problems.push_back(fmt::format("{}: the folder \"{}\" holds files fretwear did not write (it has no {} marker) "
                                    "and would replace; give a new or an empty folder, or remove this one",
                                    what, target.string(), kOutputMarker));
+  } else if (::access(target.parent_path().c_str(), W_OK | X_OK) != 0) {
+    // The staging folder is made beside the target, and renamed over it.
+    problems.push_back(fmt::format("{}: cannot write into \"{}\" ({}), where fretwear puts the new \"{}\"; give a "
+                                   "folder in a folder you can write to",
+                                   what, target.parent_path().string(), std::strerror(errno), target.string()));
   }
 }
 
 }  // namespace
+
+bool staging_like(const std::string& name) {
+  for (const std::string suffix : {kStagingSuffix, ".old-"}) {
+    const auto at = name.rfind(suffix);
+    if (at == std::string::npos) continue;
+    const std::string digits = name.substr(at + suffix.size());
+    if (!digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos) return true;
+  }
+  return false;
+}
+
+long name_max(const fs::path& p) {
+  std::error_code ec;
+  fs::path above = fs::absolute(p, ec);
+  while (!fs::is_directory(above, ec) && above.has_relative_path()) above = above.parent_path();
+  const long n = ::pathconf(above.c_str(), _PC_NAME_MAX);
+  return n > 0 ? n : NAME_MAX;
+}
 
 const char* subfolder(OutputCommand command) {
   switch (command) {
@@ -137,12 +249,23 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path&
                                    dir.string()));
     return problems;
   }
+  // Staging folders of a killed command are removed by the next command writing beside them (OutputFolder::stage):
+  // a results folder named like one would be.
+  if (staging_like(last.filename().string())) {
+    problems.push_back(fmt::format("output.dir: \"{}\" ends like the staging folders fretwear makes and removes "
+                                   "beside a results folder (<name>.partial-<digits>, <name>.old-<digits>); give a "
+                                   "name that does not end in .partial- or .old- and digits",
+                                   dir.string()));
+    return problems;
+  }
+  if (!link_problems(dir, "output.dir", problems)) return problems;
   const fs::path scene_dir = scene_file.empty() ? fs::path() : resolved(scene_file).parent_path();
   const fs::path target = resolved(dir);
   check_target(target, "output.dir", scene_dir, problems);
   if (command != OutputCommand::run && problems.empty()) {
     const std::string sub = subfolder(command);
-    check_target(target / sub, fmt::format("output.dir (its subfolder {}/)", sub), scene_dir, problems);
+    const std::string what = fmt::format("output.dir (its subfolder {}/)", sub);
+    if (link_problems(dir / sub, what, problems)) check_target(target / sub, what, scene_dir, problems);
   }
   return problems;
 }
@@ -150,7 +273,7 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path&
 OutputFolder::OutputFolder(fs::path dir, OutputCommand command) : dir_(std::move(dir)), command_(command) {
   if (!dir_.has_filename()) dir_ = dir_.parent_path();
   staging_ = dir_;
-  staging_ += fmt::format(".partial-{}", ::getpid());
+  staging_ += fmt::format("{}{}", kStagingSuffix, ::getpid());
 }
 
 void OutputFolder::stage() const {
@@ -165,7 +288,7 @@ void OutputFolder::stage() const {
   const std::string name = dir_.filename().string();
   for (const auto& e : fs::directory_iterator(parent, ec)) {
     const std::string entry = e.path().filename().string();
-    for (const std::string& prefix : {name + ".partial-", name + ".old-"}) {
+    for (const std::string& prefix : {name + kStagingSuffix, name + ".old-"}) {
       if (entry.rfind(prefix, 0) != 0) continue;
       const std::string pid = entry.substr(prefix.size());
       if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
@@ -223,25 +346,27 @@ void OutputFolder::write_json(const std::string& file, const json& j) const { wr
 void OutputFolder::commit() {
   stage();
   std::error_code ec;
-  if (fs::exists(fs::symlink_status(dir_, ec))) {
-    if (!fs::is_directory(dir_, ec) || (!ours(dir_) && !fs::is_empty(dir_, ec)))  // checked before; changed since
+  if (const auto status = fs::symlink_status(dir_, ec); fs::exists(status)) {
+    if (!fs::is_directory(status) || (!ours(dir_) && !fs::is_empty(dir_, ec)))  // checked before; changed since
       throw Error(fmt::format("{} changed while fretwear ran and is no longer a folder of its own; the results are "
                               "in {}",
                               dir_.string(), staging_.string()));
-    if (command_ == OutputCommand::run)  // the other commands' results stay
-      for (const OutputCommand other : {OutputCommand::convergence, OutputCommand::sweep}) {
-        const fs::path sub = dir_ / subfolder(other);
-        if (fs::exists(sub, ec)) fs::rename(sub, staging_ / sub.filename(), ec);
-      }
     fs::path old = dir_;
     old += fmt::format(".old-{}", ::getpid());
-    if (ours(dir_)) {
+    const bool earlier_results = ours(dir_);
+    if (earlier_results) {
       fs::rename(dir_, old, ec);
     } else {
       fs::remove(dir_, ec);  // empty
     }
     if (ec) throw Error(fmt::format("cannot replace {}: {}; the results are in {}", dir_.string(), ec.message(),
                                     staging_.string()));
+    if (command_ == OutputCommand::run && earlier_results) {  // the other commands' results stay
+      lend_owner_all(old);  // discarded below
+      for (const OutputCommand other : {OutputCommand::convergence, OutputCommand::sweep})
+        carry(old / subfolder(other), staging_ / subfolder(other));
+    }
+    fs::permissions(staging_, status.permissions(), fs::perm_options::replace, ec);  // the target's bits stay
     fs::rename(staging_, dir_, ec);
     if (ec) throw Error(fmt::format("cannot move the results into {}: {}; they are in {}", dir_.string(), ec.message(),
                                     staging_.string()));

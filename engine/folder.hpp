@@ -24,10 +24,22 @@ const char* subfolder(OutputCommand command);  // "" for run, "convergence", "sw
 std::filesystem::path output_folder(const Scene& scene, OutputCommand command);
 
 // Why `command` may not write its results for the scene read from scene_file (empty: it may). Refused: a path that
-// names `.` or `..`; the working folder or any folder above it; the scene file's folder or any folder above it; an
-// existing file; an existing folder, not empty, without kOutputMarker. Each problem names output.dir.
+// names `.` or `..`; a folder named like a staging folder (staging_like()); a symbolic link, or a path through a
+// dangling or looping one; a name too long for the file system once kStagingSuffix is added; the working folder or
+// any folder above it; the scene file's folder or any folder above it; an existing file; an existing folder, not
+// empty, without kOutputMarker; a folder whose parent (where the staging folder is made) cannot be written. Each
+// problem names output.dir.
 std::vector<std::string> output_dir_problems(const Scene& scene, const std::filesystem::path& scene_file,
                                              OutputCommand command);
+
+// The names fretwear gives its staging folders beside a target `<name>`: `<name>.partial-<pid>` while a command
+// writes, `<name>.old-<pid>` while it replaces. A process id has at most kPidDigits digits (Linux: pid_max <= 2^22).
+inline constexpr int kPidDigits = 7;
+inline constexpr const char* kStagingSuffix = ".partial-";
+// True when `name` ends like a staging folder: `.partial-` or `.old-` and one digit or more.
+bool staging_like(const std::string& name);
+// The longest file name the file system holding `p` (or the nearest folder above it that exists) takes.
+long name_max(const std::filesystem::path& p);
 
 // What the stages wrote into a folder, for the run's index.html: the tables (CSV) and the plots, in order.
 struct Written {

@@ -371,6 +371,7 @@ int validate(const std::string& path, bool quiet, bool verbose) {
 }
 
 int convergence(const std::string& path, int from, int to, bool quiet) {
+  if (const std::string problem = grid_range_problem(from, to); !problem.empty()) throw InputError(problem);
   const Scene scene = load_scene(path);
   preflight(scene, path, OutputCommand::convergence);
   const std::filesystem::path dir = output_folder(scene, OutputCommand::convergence);

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/checkpoint.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
 
@@ -209,6 +210,7 @@ std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflig
 Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command) {
   Preflight result;
   std::vector<std::string> problems = output_dir_problems(scene, scene_file, command);
+  if (problems.empty() && command == OutputCommand::run) problems = checkpoint_problems(scene);
   const std::vector<std::string> physics =
       physics_problems(scene, command == OutputCommand::run ? &result : nullptr);
   problems.insert(problems.end(), physics.begin(), physics.end());

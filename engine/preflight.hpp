@@ -30,7 +30,8 @@ struct Preflight {
 // converge is no problem of the scene's: the run reports it (exit status 3).
 std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflight = nullptr);
 
-// Every check of the scene before `command` solves it: output_dir_problems() and physics_problems(). Throws
+// Every check of the scene before `command` solves it: output_dir_problems(), for `run` checkpoint_problems() (the
+// wear checkpoint's place beside output.dir), and physics_problems(). Throws
 // SceneError listing every problem. scene_file: where the scene was read ("" for a scene built in memory).
 Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command);
 

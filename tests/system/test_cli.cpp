@@ -145,6 +145,28 @@ TEST_CASE("convergence writes its table into the convergence subfolder of output
   CHECK(rows == 4);  // header and 128, 256, 512
 }
 
+TEST_CASE("convergence refuses a range of grids that holds none, with the earlier results kept") {
+  // The grids are the powers of two from bit_ceil(--from) to --to: --from above --to, or rounding up past it,
+  // leaves none, which is the user's mistake (exit 2, the options named), not an empty table over the last one.
+  Scratch s;
+  s.write("s.json", kGood);
+  REQUIRE(s.fretwear({"convergence", "s.json", "--from", "128", "--to", "256", "-q"}).exited(kDone));
+  const Snapshot before = s.snapshot();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--from", "512", "--to", "128"}, "--from 512 is above --to 128"},
+      {{"--from", "200", "--to", "250"}, "--from 200 rounds up to 256 cells"},
+  };
+  for (const auto& [range, says] : cases) {
+    INFO(says);
+    std::vector<std::string> args = {"convergence", "s.json"};
+    args.insert(args.end(), range.begin(), range.end());
+    const Outcome r = s.fretwear(args);
+    CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+    CHECK_MESSAGE(r.err.find(says) != std::string::npos, r.describe());
+    CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "changed: " << join(changes(before, s.snapshot())));
+  }
+}
+
 TEST_CASE("a wear run writes wear_history.csv, profiles.csv and the wear plots") {
   Scratch s;
   s.write("w.json", R"({"name": "wear", "materials": {"both": {"E": 2e11, "nu": 0.3}},

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include "system/program.hpp"
 
@@ -18,22 +19,26 @@ using namespace fretwear::system_test;
 namespace {
 
 // Where a case puts the scene (relative to the working folder) and what it names as output.dir (nothing: the
-// default output/<name>); `plots_only` gives "output": {"plots": false} and no dir.
+// default output/<name>); `plots_only` gives "output": {"plots": false} and no dir; `wear` a wear scene, which keeps
+// a checkpoint beside output.dir.
 struct Setup {
   std::string scene = "s.json";
   std::optional<std::string> dir = std::nullopt;
   bool plots_only = false;
+  bool wear = false;
 };
 
-// A case: what it prepares in the tree (folders, files, earlier runs) and the command it runs.
+// A case: what it prepares in the tree (folders, files, earlier runs), the command it runs, and what a refusal's
+// message must say besides output.dir.
 struct FolderCase {
   std::string label;
   std::function<Setup(const Scratch&)> prepare;
   std::string command = "run";
+  std::string says = "";
 };
 
 std::string scene_text(const Setup& setup, const std::string& name = "h") {
-  json scene = base_scene();
+  json scene = setup.wear ? wear_scene() : base_scene();
   scene["name"] = name;
   if (setup.dir) scene["output"] = {{"dir", *setup.dir}};
   if (setup.plots_only) scene["output"] = {{"plots", false}};
@@ -80,9 +85,11 @@ void check_refused(const FolderCase& c) {
   CHECK_MESSAGE(!r.crashed(), r.describe());
   CHECK_MESSAGE(r.exited(kInvalid), "want exit 2, got " << r.describe());
   CHECK_MESSAGE(r.err.find("output.dir") != std::string::npos, "the message should name output.dir: " << r.describe());
+  CHECK_MESSAGE(r.err.find(c.says) != std::string::npos,
+                "the message should say \"" << c.says << "\": " << r.describe());
   CHECK_MESSAGE(changes(before, after).empty(), "the tree changed: " << join(changes(before, after)));
   CHECK_MESSAGE(!v.crashed(), "validate: " << v.describe());
-  CHECK_MESSAGE(!(v.exited(kDone) && r.exited(kInvalid)), "validate accepted what run refused: " << v.describe());
+  CHECK_MESSAGE(v.exited(kInvalid), "validate should refuse what run refuses: " << v.describe());
 }
 
 // Accepted: exit 0, the results and the marker in the folder, everything of the user's outside it as it was, no
@@ -354,4 +361,157 @@ TEST_CASE("output.dir \"/\" is refused before anything is computed") {
   CHECK_MESSAGE(r.err.find("output.dir") != std::string::npos, "the message should name output.dir: " << r.describe());
   CHECK_MESSAGE(made.empty(), "made at the top of the file system: " << join(made));
   CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "the tree changed: " << join(changes(before, s.snapshot())));
+}
+
+TEST_CASE("output.dir refused where the wear run's checkpoint would replace a file of the user's") {
+  // A wear run keeps its checkpoint in <output.dir>.checkpoint, overwrites it at every record and deletes it at the
+  // end: there only a file fretwear wrote (a fretwear checkpoint, of any scene or version) may stand.
+  const std::vector<FolderCase> cases = {
+      {"a file of the user's",
+       [](const Scratch& s) {
+         s.write("res.checkpoint", "the user's notes\n");
+         return Setup{"s.json", "res", false, true};
+       },
+       "run", "res.checkpoint"},
+      {"an empty file",
+       [](const Scratch& s) {
+         s.write("res.checkpoint", "");
+         return Setup{"s.json", "res", false, true};
+       },
+       "run", "res.checkpoint"},
+      {"a folder of the user's",
+       [](const Scratch& s) {
+         s.write("res.checkpoint/inner.txt", "the user's\n");
+         return Setup{"s.json", "res", false, true};
+       },
+       "run", "res.checkpoint"},
+      {"a link to a file of the user's",
+       [](const Scratch& s) {
+         std::filesystem::create_symlink("notes.txt", s.work / "res.checkpoint");
+         return Setup{"s.json", "res", false, true};
+       },
+       "run", "res.checkpoint"},
+      {"a file of the user's beside the default output/<name>",
+       [](const Scratch& s) {
+         s.write("output/h.checkpoint", "the user's notes\n");
+         return Setup{"s.json", std::nullopt, false, true};
+       },
+       "run", "h.checkpoint"},
+  };
+  for (const auto& c : cases) check_refused(c);
+}
+
+TEST_CASE("a checkpoint fretwear wrote beside output.dir does not stop a run") {
+  // An interrupted run leaves its checkpoint; a run from the start takes its place, and deletes it when done.
+  Scratch s;
+  json scene = wear_scene();
+  scene["output"] = {{"dir", "res"}, {"plots", false}};
+  s.write("s.json", scene.dump());
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "2"}}).exited(kInterrupted));
+  REQUIRE(std::filesystem::is_regular_file(s.work / "res.checkpoint"));
+  CHECK(s.fretwear({"validate", "s.json", "-q"}).exited(kDone));
+  const Outcome r = s.fretwear({"run", "s.json", "-q"});
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(!std::filesystem::exists(s.work / "res.checkpoint"));
+}
+
+TEST_CASE("output.dir refused when named like fretwear's staging folders") {
+  // A command removes <name>.partial-<pid> and <name>.old-<pid> beside its folder <name> when their process is gone:
+  // a results folder so named would be removed by a later run of the scene writing into <name>.
+  const std::vector<FolderCase> cases = {
+      {".partial- and digits", [](const Scratch&) { return Setup{"s.json", "h.partial-123"}; }, "run", "h.partial-123"},
+      {".old- and digits, deeper", [](const Scratch&) { return Setup{"s.json", "out/h.old-7"}; }, "run", "h.old-7"},
+      {".partial- and digits, a trailing slash", [](const Scratch&) { return Setup{"s.json", "h.partial-4/"}; }},
+      {".partial- and digits, for convergence", [](const Scratch&) { return Setup{"s.json", "h.partial-123"}; },
+       "convergence"},
+  };
+  for (const auto& c : cases) check_refused(c);
+  check_accepted({".old- and no digits", [](const Scratch&) { return Setup{"s.json", "h.old-v2"}; }},
+                 "h.old-v2");
+}
+
+TEST_CASE("output.dir refused when it is a symbolic link, or goes through one that dangles or loops") {
+  // A results folder is replaced as a whole: a link given as output.dir would be replaced by a folder. A link that
+  // leads nowhere cannot be written through.
+  auto prepared = [](std::function<void(const Scratch&)> make, std::string dir) {
+    return [make, dir](const Scratch& s) {
+      make(s);
+      return Setup{"s.json", dir};
+    };
+  };
+  const auto empty_link = [](const Scratch& s) {
+    std::filesystem::create_directory(s.work / "empty");
+    link(s, "empty", "elink");
+  };
+  const auto results_link = [](const Scratch& s) {
+    run_before(s, "first.json", scene_text(Setup{"first.json", "made"}));
+    link(s, "made", "mlink");
+  };
+  const auto dangling = [](const Scratch& s) { link(s, "nowhere", "dangling"); };
+  const auto loop = [](const Scratch& s) {
+    link(s, "loopb", "loopa");
+    link(s, "loopa", "loopb");
+  };
+  const std::vector<FolderCase> cases = {
+      {"a link to an empty folder", prepared(empty_link, "elink"), "run", "\"elink\" is a symbolic link"},
+      {"a link to an empty folder, a trailing slash", prepared(empty_link, "elink/"), "run", "symbolic link"},
+      {"a link to earlier results", prepared(results_link, "mlink"), "run", "\"mlink\" is a symbolic link"},
+      {"a dangling link", prepared(dangling, "dangling"), "run", "\"dangling\" is a symbolic link"},
+      {"a folder under a dangling link", prepared(dangling, "dangling/sub"), "run", "\"dangling\" is a symbolic link"},
+      {"a link loop", prepared(loop, "loopa"), "run", "\"loopa\" is a symbolic link"},
+      {"a folder under a link loop", prepared(loop, "loopa/sub"), "run", "\"loopa\" is a symbolic link"},
+      {"a link to an empty folder, for convergence", prepared(empty_link, "elink"), "convergence", "symbolic link"},
+      {"a dangling link, for sweep", prepared(dangling, "dangling/sub"), "sweep", "symbolic link"},
+  };
+  for (const auto& c : cases) check_refused(c);
+  // A link above the folder is followed: the folder is made in the folder it points to.
+  check_accepted({"a missing folder under a link to a folder", prepared(empty_link, "elink/sub")}, "empty/sub");
+}
+
+TEST_CASE("output.dir refused when its name with the staging suffix passes the file system's limit") {
+  // The staging folder <name>.partial-<pid> (a pid of up to 7 digits: 16 characters more) and a wear run's
+  // checkpoint <name>.checkpoint.tmp-<pid> (23 more) must be names the file system takes.
+  Scratch probe;
+  const long max = ::pathconf(probe.work.c_str(), _PC_NAME_MAX);
+  REQUIRE(max > 30);
+  const std::string longest = std::string(std::size_t(max) - 16, 'a');
+  const std::vector<FolderCase> cases = {
+      {"a name one past the limit", [longest](const Scratch&) { return Setup{"s.json", longest + "a"}; }, "run",
+       "at most " + std::to_string(max)},
+      {"a missing folder above, past the limit itself",
+       [max](const Scratch&) { return Setup{"s.json", std::string(std::size_t(max) + 1, 'b') + "/c"}; }, "run",
+       "at most " + std::to_string(max)},
+      {"a wear run's checkpoint one past the limit",
+       [max](const Scratch&) { return Setup{"s.json", std::string(std::size_t(max) - 22, 'w'), false, true}; }, "run",
+       "at most " + std::to_string(max)},
+  };
+  for (const auto& c : cases) check_refused(c);
+  check_accepted({"a name at the limit", [longest](const Scratch&) { return Setup{"s.json", longest}; }}, longest);
+  const std::string wear_longest(std::size_t(max) - 23, 'w');
+  check_accepted({"a wear run's checkpoint at the limit",
+                  [wear_longest](const Scratch&) { return Setup{"s.json", wear_longest, false, true}; }},
+                 wear_longest);
+}
+
+TEST_CASE("a replaced folder keeps its permission bits") {
+  // The new results folder takes the place of the one it replaces, with its mode: an empty folder of the user's and
+  // earlier results alike.
+  namespace fs = std::filesystem;
+  Scratch s;
+  s.write("s.json", scene_text(Setup{"s.json", "ro"}));
+  fs::create_directory(s.work / "ro");
+  fs::permissions(s.work / "ro", fs::perms(0555));
+  Outcome r = s.fretwear({"run", "s.json", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(fs::exists(s.work / "ro" / "summary.json"));
+  CHECK(fs::status(s.work / "ro").permissions() == fs::perms(0555));
+  fs::permissions(s.work / "ro", fs::perms(0750));
+  REQUIRE(s.fretwear({"convergence", "s.json", "--from", "64", "--to", "128", "-q"}).exited(kDone));
+  fs::permissions(s.work / "ro" / "convergence", fs::perms(0700));
+  r = s.fretwear({"run", "s.json", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(fs::status(s.work / "ro").permissions() == fs::perms(0750));
+  CHECK(fs::status(s.work / "ro" / "convergence").permissions() == fs::perms(0700));
+  CHECK(fs::exists(s.work / "ro" / "convergence" / "convergence.csv"));
+  fs::permissions(s.work / "ro", fs::perms(0755));
 }

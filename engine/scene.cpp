@@ -709,9 +709,16 @@ struct Given {
 
 // name, plane.
 void parse_naming(Reader& top, const std::string& default_name, Scene& s) {
-  s.name = top.string("name", default_name, "a name of letters, digits, '_', '-' and '.'").value_or("scene");
+  constexpr std::size_t kMaxName = 128;  // valid_name's limit
+  s.name = top.string("name", default_name, "a name of at most 128 letters, digits, '_', '-' and '.'")
+               .value_or("scene");
   if (!valid_name(s.name))
-    top.problem("name", fmt::format("\"{}\" cannot name a folder; use letters, digits, '_', '-' and '.'", s.name));
+    top.problem("name", s.name.size() > kMaxName
+                            ? fmt::format("\"{}\" cannot name a folder: it has {} characters; use at most {}, of "
+                                          "letters, digits, '_', '-' and '.'",
+                                          s.name, s.name.size(), kMaxName)
+                            : fmt::format("\"{}\" cannot name a folder; use letters, digits, '_', '-' and '.'",
+                                          s.name));
 
   if (auto plane = top.string("plane", "strain", "\"strain\" or \"stress\"")) {
     try {

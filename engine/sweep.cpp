@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -56,11 +57,92 @@ void set_path(json& j, const std::string& dotted, const json& value) {
   (*node)[keys.back()] = value;
 }
 
+// The longest name a scene may have (valid_name, engine/scene.cpp): a run's name is its scene's.
+constexpr std::size_t kMaxName = 128;
+
+// A value as the user reads it: a string bare, anything else as JSON.
+std::string text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
+
 std::string word(const json& v) {
   std::string s = v.is_string() ? v.get<std::string>() : v.dump();
   for (char& c : s)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
   return s;
+}
+
+// True when `inner` is a key inside `outer` (load.Q.ratio inside load.Q).
+bool inside(const std::string& inner, const std::string& outer) {
+  return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 && inner[outer.size()] == '.';
+}
+
+// What the variations get wrong whatever the scene: the keys the sweep sets itself, a key varied twice or inside
+// another varied key (one would overwrite the other's values), and a value given twice (its two runs would be one
+// variant, written into one folder at once).
+std::vector<std::string> variation_problems(const std::vector<Variation>& variations) {
+  std::vector<std::string> problems;
+  for (std::size_t i = 0; i < variations.size(); ++i) {
+    const Variation& v = variations[i];
+    if (v.key == "name")
+      problems.push_back("--vary name: the sweep names every run itself (<scene name>__<key>_<value>, its folder "
+                         "under runs/); set name in the scene, and vary other keys");
+    if (v.key == "output" || inside(v.key, "output"))
+      problems.push_back(fmt::format("--vary {}: the sweep places every run itself, in <output.dir>/sweep/runs/<run "
+                                     "name>/, with the scene's output.plots; set output in the scene, and vary "
+                                     "other keys",
+                                     v.key));
+    for (std::size_t j = 0; j < i; ++j) {
+      const std::string& other = variations[j].key;
+      if (other == v.key) {
+        problems.push_back(fmt::format("--vary {} is given twice; give each key once, with all its values (--vary "
+                                       "{}=v1,v2,...)",
+                                       v.key, v.key));
+        break;
+      }
+      if (inside(v.key, other) || inside(other, v.key)) {
+        const auto& [in, out] = inside(v.key, other) ? std::pair(v.key, other) : std::pair(other, v.key);
+        problems.push_back(fmt::format("--vary {} and --vary {}: {} is part of {}, and one would overwrite the "
+                                       "other's values; vary one of them",
+                                       other, v.key, in, out));
+        break;
+      }
+    }
+    for (std::size_t b = 1; b < v.values.size(); ++b)
+      for (std::size_t a = 0; a < b; ++a)
+        if (v.values[a] == v.values[b]) {
+          problems.push_back(fmt::format("--vary {}: values {} and {} are both {}; give each value once", v.key,
+                                         a + 1, b + 1, text(v.values[a])));
+          break;
+        }
+  }
+  return problems;
+}
+
+// Names the runs, each its folder's under runs/: the scene's name and every varied key with its value
+// (sw__load.P_200000.0), each character a name cannot hold made '_'. A name longer than kMaxName, or one that runs
+// of different values would share (a/p.csv and a_p.csv both give a_p.csv), is <scene name>__run<k> instead, k the
+// run's index in the product, the scene's name cut short as far as kMaxName needs. Any name two runs still share is
+// a problem.
+std::vector<std::string> name_runs(const std::string& scene_name, const std::vector<Variation>& variations,
+                                   std::vector<SweepRun>& runs) {
+  std::map<std::string, std::size_t> uses;
+  for (SweepRun& run : runs) {
+    run.name = scene_name;
+    for (std::size_t i = 0; i < variations.size(); ++i)
+      run.name += "__" + variations[i].key + "_" + word(run.values[i]);
+    ++uses[run.name];
+  }
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (runs[k].name.size() > kMaxName || uses[runs[k].name] > 1) {
+      const std::string index = fmt::format("__run{}", k);
+      runs[k].name = scene_name.substr(0, kMaxName - index.size()) + index;
+    }
+  std::vector<std::string> problems;
+  std::map<std::string, std::size_t> first;
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (const auto [at, fresh] = first.emplace(runs[k].name, k); !fresh)
+      problems.push_back(fmt::format("runs {} and {} would both be named {}; rename the scene", at->second, k,
+                                     runs[k].name));
+  return problems;
 }
 
 // The summary's scalars worth a column, each with its unit as the column names it (empty: a count, a word or a
@@ -141,17 +223,25 @@ std::vector<fs::path> take_over_killed(const fs::path& dir) {
   return sources;
 }
 
-// True when the resolved scene a run wrote holds every value of `wanted` (the variant's scene before solving): the
-// run adds what it resolved (the grid's window, ...). The output folder is left out: it names the staging folder of
-// the sweep that ran it.
-bool holds(const json& resolved, const json& wanted, bool top = true) {
-  if (!wanted.is_object()) return resolved == wanted;
-  if (!resolved.is_object()) return false;
-  for (const auto& [key, value] : wanted.items()) {
-    if (top && key == "output") continue;
-    if (!resolved.contains(key) || !holds(resolved[key], value, false)) return false;
-  }
-  return true;
+// Removes j[group][key], if there.
+void erase_at(json& j, const char* group, const char* key) {
+  if (j.contains(group) && j[group].is_object()) j[group].erase(key);
+}
+
+// True when the resolved scene a run wrote is the one `wanted` (the variant's scene before solving) resolves to:
+// equal, but for what legitimately differs between the two:
+// - grid.window and grid.reference_depth, when `wanted` leaves them to the run: the run writes those it computed
+//   from the rest of the scene (engine/output.cpp), equal for equal scenes; when `wanted` gives them, the run
+//   writes them as given, and they are compared;
+// - output.dir, which names where the run's folder is, not what it computed: a run is kept only from the folder of
+//   the variant's own name, moved or copied to <output.dir>/sweep/runs/<name>, so its output.dir can only spell
+//   that folder otherwise (a relative or absolute output.dir in the scene).
+bool same_run(json resolved, json wanted) {
+  for (const char* key : {"window", "reference_depth"})
+    if (!wanted.contains("grid") || !wanted["grid"].contains(key)) erase_at(resolved, "grid", key);
+  erase_at(resolved, "output", "dir");
+  erase_at(wanted, "output", "dir");
+  return resolved == wanted;
 }
 
 // The summary of a complete run folder of `scene` (written whole by its own staging and commit: a folder under its
@@ -163,7 +253,7 @@ json complete_summary(const fs::path& folder, const Scene& scene) {
   std::ifstream summary_file(folder / "summary.json"), scene_file(folder / "scene.resolved.json");
   const json summary = json::parse(summary_file, nullptr, false), resolved = json::parse(scene_file, nullptr, false);
   if (!summary.is_object() || !summary.contains("contact") || !resolved.is_object()) return nullptr;
-  if (!holds(resolved, scene.to_json())) return nullptr;
+  if (!same_run(resolved, scene.to_json())) return nullptr;
   return summary;
 }
 
@@ -173,11 +263,12 @@ std::size_t kill_after_runs() {
   return v ? std::size_t(std::strtoul(v, nullptr, 10)) : 0;
 }
 
-// Runs one run into its folder; never throws.
-SweepOutcome run_one(const Scene& scene) {
+// Runs one run into the folder `at`, inside the sweep's staging folder; its scene.resolved.json names
+// scene.output_dir, the folder the run has once the sweep is committed. Never throws.
+SweepOutcome run_one(const Scene& scene, const fs::path& at) {
   SweepOutcome o;
   try {
-    OutputFolder folder(scene.output_dir);
+    OutputFolder folder(at);
     const RunResult r = Simulation(scene).run();
     o.summary = write_results(scene, r, folder);
     folder.commit();
@@ -245,34 +336,32 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   result.dir = output_folder(base_scene, OutputCommand::sweep);
   result.root = dispatch->root();
 
-  // Every combination, validated before anything runs (in every process alike).
+  // Every combination, validated before anything runs (in every process alike). A run's scene names its folder
+  // as it will be once the sweep is committed.
   std::vector<Scene> scenes;
-  std::vector<std::string> problems;
+  std::vector<std::string> problems = variation_problems(variations);
   std::size_t total = 1;
   for (const auto& v : variations) total *= v.values.size();
   for (std::size_t k = 0; k < total; ++k) {
-    json j = base;
     SweepRun run;
-    std::size_t rest = k;
-    std::string name = base_scene.name;
-    for (const auto& v : variations) {
-      const json& value = v.values[rest % v.values.size()];
+    for (std::size_t rest = k; const auto& v : variations) {
+      run.values.push_back(v.values[rest % v.values.size()]);
       rest /= v.values.size();
-      set_path(j, v.key, value);
-      run.values.push_back(value);
-      name += "__" + v.key + "_" + word(value);
     }
-    if (name.size() > 128) name = fmt::format("{}__run{}", base_scene.name, k);
-    j["name"] = name;
-    j["output"] = {{"dir", (result.dir / "runs" / name).string()}, {"plots", base_scene.plots}};
+    result.runs.push_back(std::move(run));
+  }
+  for (const std::string& p : name_runs(base_scene.name, variations, result.runs)) problems.push_back(p);
+  for (const SweepRun& run : result.runs) {
+    json j = base;
+    for (std::size_t i = 0; i < variations.size(); ++i) set_path(j, variations[i].key, run.values[i]);
+    j["name"] = run.name;
+    j["output"] = {{"dir", (result.dir / "runs" / run.name).string()}, {"plots", base_scene.plots}};
     try {
       scenes.push_back(parse_scene(j, "scene", scene_file.parent_path()));  // a table's file beside the scene
-      for (const auto& p : physics_problems(scenes.back())) problems.push_back(name + ": " + p);
+      for (const auto& p : physics_problems(scenes.back())) problems.push_back(run.name + ": " + p);
     } catch (const SceneError& e) {
-      for (const auto& p : e.problems()) problems.push_back(name + ": " + p);
+      for (const auto& p : e.problems()) problems.push_back(run.name + ": " + p);
     }
-    run.name = name;
-    result.runs.push_back(run);
   }
   // The output folder is checked by the root alone, before it makes anything there (another process checking it
   // meanwhile could find the root's staging folder), and its verdict is every process's.
@@ -290,6 +379,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   std::optional<OutputFolder> out;
   std::vector<fs::path> killed;
   std::vector<std::size_t> todo;
+  std::size_t from_killed = 0, from_finished = 0;  // runs kept from killed sweeps, from the last finished one
   std::string runs_dir;
   if (result.root) {
     if (options.resume) killed = take_over_killed(result.dir);
@@ -297,8 +387,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     fs::create_directories(out->path("runs"));
     for (std::size_t k = 0; k < scenes.size(); ++k) {
       SweepRun& run = result.runs[k];
-      Scene scene = scenes[k];
-      scene.output_dir = out->path("runs") / run.name;
+      const fs::path to = out->path("runs") / run.name;
       if (options.resume) {
         // Moved from a killed sweep's folder; copied from the last finished sweep's, which stays whole until this
         // one replaces it.
@@ -306,19 +395,20 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
         if (ours(result.dir)) sources.push_back(result.dir);
         for (const fs::path& source : sources) {
           const fs::path from = source / "runs" / run.name;
-          json summary = complete_summary(from, scene);
+          json summary = complete_summary(from, scenes[k]);
           if (summary.is_null()) continue;
           std::error_code ec;
           if (source == result.dir)
-            fs::copy(from, scene.output_dir, fs::copy_options::recursive, ec);
+            fs::copy(from, to, fs::copy_options::recursive, ec);
           else
-            fs::rename(from, scene.output_dir, ec);
+            fs::rename(from, to, ec);
           if (ec) {
-            fs::remove_all(scene.output_dir, ec);
+            fs::remove_all(to, ec);
             continue;
           }
           run.summary = std::move(summary);
           run.kept = true;
+          ++(source == result.dir ? from_finished : from_killed);
           break;
         }
       }
@@ -331,16 +421,18 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   const std::size_t kept = result.runs.size() - todo.size(), kill_after = kill_after_runs();
   if (options.progress && result.root) {
     *options.progress << fmt::format("sweep: {} runs", result.runs.size());
-    if (options.resume) *options.progress << fmt::format(", {} kept from the sweep that was stopped", kept);
+    if (options.resume) {
+      if (kept == 0) *options.progress << ", 0 kept (no complete run of the same resolved scene was found)";
+      if (from_killed > 0)
+        *options.progress << fmt::format(", {} kept from the {}", from_killed,
+                                         killed.size() == 1 ? "sweep that was stopped" : "sweeps that were stopped");
+      if (from_finished > 0) *options.progress << fmt::format(", {} kept from the last finished sweep", from_finished);
+    }
     *options.progress << "\n" << std::flush;
   }
   const auto started = std::chrono::steady_clock::now();
   std::size_t finished = 0;
-  auto run = [&](std::size_t k) {
-    Scene scene = scenes[k];
-    scene.output_dir = fs::path(runs_dir) / result.runs[k].name;
-    return run_one(scene);
-  };
+  auto run = [&](std::size_t k) { return run_one(scenes[k], fs::path(runs_dir) / result.runs[k].name); };
   auto done = [&](std::size_t k, const SweepOutcome& o) {
     SweepRun& r = result.runs[k];
     r.status = o.status, r.message = o.message, r.summary = o.summary;

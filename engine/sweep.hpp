@@ -1,7 +1,7 @@
 // `fretwear sweep`: the product of variations of a scene, one output folder per run, a table of every run's summary,
 // a regime map over the first two varied keys and colour maps of the main results. The runs are spread over the
 // local cores (threads) or, under an MPI launcher, over the ranks (sweep_mpi.hpp); a killed sweep is finished by
-// --resume, which keeps every run whose folder is complete.
+// --resume, which keeps every run whose folder is complete and whose resolved scene is its variant's.
 #pragma once
 
 #include <cstddef>
@@ -41,7 +41,7 @@ struct SweepRun {
   int status = 0;                      // as SweepOutcome::status
   std::string message;
   nlohmann::json summary;              // empty unless done
-  bool kept = false;                   // taken over from a killed sweep by --resume, not run again
+  bool kept = false;                   // taken over by --resume from a killed or the last finished sweep, not run again
 };
 
 struct SweepResult {
@@ -73,7 +73,7 @@ std::unique_ptr<SweepDispatch> thread_dispatch(int jobs);
 
 struct SweepOptions {
   int jobs = 1;                        // threads, when `dispatch` is null
-  bool resume = false;                 // keep the complete runs of a killed sweep of the same scene
+  bool resume = false;                 // keep the complete runs of the same variants from killed or finished sweeps
   std::ostream* progress = nullptr;    // progress and a line per finished run; null: silent
   bool terminal = false;               // progress is a terminal: one line, rewritten in place, with the time left
   SweepDispatch* dispatch = nullptr;   // null: thread_dispatch(jobs)

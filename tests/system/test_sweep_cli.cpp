@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "system/program.hpp"
+#include "system/sweep_support.hpp"
 
 using namespace fretwear::system_test;
 
@@ -164,4 +165,118 @@ TEST_CASE("a sweep of the normal contact alone maps its peak pressure, and gnupl
   CHECK(script.find("peak pressure p_max (Pa)") != std::string::npos);
   CHECK(fs::exists(dir / "sweep_map.png"));
   CHECK_FALSE(fs::exists(dir / "gnuplot.log"));
+}
+
+namespace {
+
+// The names of the run folders under <out>/sweep/runs.
+std::vector<std::string> run_folders(const fs::path& out) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(out / "sweep" / "runs")) names.push_back(e.path().filename().string());
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("a sweep refuses a value given twice for a key, exit 2, naming the key and the value, nothing written") {
+  // Two runs of one variant would share a folder and write it at once.
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  for (const std::string vary : {"load.P=1e5,1e5", "friction=0.5,0.5", "load.P=1e5,2e5,100000"}) {
+    CAPTURE(vary);
+    const Outcome r = s.fretwear({"sweep", scene, "--vary", vary, "-q"});
+    CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+    const std::string key = vary.substr(0, vary.find('='));
+    CHECK_MESSAGE(r.err.find("--vary " + key + ": ") != std::string::npos, r.err);
+    CHECK_MESSAGE(r.err.find("give each value once") != std::string::npos, r.err);
+    CHECK_FALSE(fs::exists(s.work / "out"));
+  }
+}
+
+TEST_CASE("values that differ only in characters a folder name cannot hold get a run folder each") {
+  // a/p.csv and a_p.csv both read as the name part a_p.csv: the runs are named by their index instead.
+  Scratch s;
+  const fs::path source = fs::path(FRETWEAR_SOURCE_DIR) / "examples" / "measured_profile" / "crowned_pad.csv";
+  fs::create_directories(s.work / "a");
+  fs::copy_file(source, s.work / "a" / "p.csv");
+  fs::copy_file(source, s.work / "a_p.csv");
+  fs::copy_file(source, s.work / "crowned_pad.csv");  // the base scene's, valid on its own
+  json scene = json::parse(std::ifstream(source.parent_path() / "crowned_pad.json"));
+  scene["grid"]["cells"] = 256;
+  scene["output"] = {{"dir", (s.work / "out").string()}, {"plots", false}};
+  s.write("pad.json", scene.dump());
+  const Outcome r = s.fretwear({"sweep", "pad.json", "--vary", "profile.file=a/p.csv,a_p.csv", "--jobs", "2", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const auto rows = csv_rows(s.work / "out" / "sweep" / "sweep.csv", "timings.total_s");
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[1][2] != rows[2][2]);  // the name column
+  const std::vector<std::string> folders = run_folders(s.work / "out");
+  REQUIRE(folders.size() == 2);
+  for (const auto& row : rows)
+    if (row[0] != "profile.file") {
+      const json resolved = json::parse(read_file(s.work / "out" / "sweep" / "runs" / row[2] / "scene.resolved.json"));
+      const std::string file = resolved["profile"]["file"].get<std::string>();  // made absolute
+      CHECK_MESSAGE(file.ends_with("/" + row[0]), file);
+    }
+}
+
+TEST_CASE("a sweep refuses a key varied twice, and keys inside one another, exit 2, nothing written") {
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  const Outcome twice = s.fretwear({"sweep", scene, "--vary", "load.P=1e5", "--vary", "load.P=2e5", "-q"});
+  CHECK_MESSAGE(twice.exited(kInvalid), twice.describe());
+  CHECK_MESSAGE(twice.err.find("--vary load.P is given twice") != std::string::npos, twice.err);
+  const Outcome inside =
+      s.fretwear({"sweep", scene, "--vary", "load.Q={\"ratio\":0.3}", "--vary", "load.Q.ratio=0.2,0.4", "-q"});
+  CHECK_MESSAGE(inside.exited(kInvalid), inside.describe());
+  CHECK_MESSAGE(inside.err.find("--vary load.Q.ratio") != std::string::npos, inside.err);
+  CHECK_FALSE(fs::exists(s.work / "out"));
+}
+
+TEST_CASE("--vary name and --vary output are refused: the sweep names and places its runs; all problems at once") {
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  const Outcome r = s.fretwear({"sweep", scene, "--vary", "name=a,b", "--vary", "output.dir=x,y", "--vary",
+                                "output.plots=true,false", "--vary", "load.P=1e5,-1", "-q"});
+  CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+  for (const std::string said : {"--vary name: the sweep names", "--vary output.dir: the sweep places",
+                           "--vary output.plots: the sweep places", "load.P"})
+    CHECK_MESSAGE(r.err.find(said) != std::string::npos, said << "\n" << r.err);
+  CHECK_FALSE(fs::exists(s.work / "out"));
+}
+
+TEST_CASE("a scene named with 128 characters sweeps, its run names cut to fit; a longer name is refused, saying so") {
+  Scratch s;
+  json scene = json::parse(read_file(write_scene(s)));
+  scene["name"] = std::string(120, 'n') + "_long.xy";
+  REQUIRE(scene["name"].get<std::string>().size() == 128);
+  s.write("long.json", scene.dump());
+  const Outcome r = s.fretwear({"sweep", "long.json", "--vary", "load.Q.ratio=0.2,0.4", "--vary", "load.P=1e5,2e5",
+                                "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const std::vector<std::string> folders = run_folders(s.work / "out");
+  CHECK(folders.size() == 4);
+  for (const auto& f : folders) CHECK_MESSAGE(f.size() <= 128, f);
+  CHECK(csv_rows(s.work / "out" / "sweep" / "sweep.csv", "timings.total_s").size() == 5);
+
+  scene["name"] = std::string(129, 'n');
+  s.write("longer.json", scene.dump());
+  const Outcome longer = s.fretwear({"validate", "longer.json"});
+  CHECK_MESSAGE(longer.exited(kInvalid), longer.describe());
+  CHECK_MESSAGE(longer.all().find("129 characters") != std::string::npos, longer.all());
+  CHECK_MESSAGE(longer.all().find("at most 128") != std::string::npos, longer.all());
+}
+
+TEST_CASE("each run's scene.resolved.json names the run's own folder as output.dir, not the sweep's staging folder") {
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  const Outcome r = s.fretwear({"sweep", scene, "--vary", "load.Q.ratio=0.2,0.4", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const std::vector<std::string> folders = run_folders(s.work / "out");
+  REQUIRE(folders.size() == 2);
+  for (const auto& name : folders) {
+    const fs::path folder = s.work / "out" / "sweep" / "runs" / name;
+    const json resolved = json::parse(read_file(folder / "scene.resolved.json"));
+    CHECK(resolved["output"]["dir"] == folder.generic_string());
+  }
 }

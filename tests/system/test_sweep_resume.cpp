@@ -2,6 +2,7 @@
 // scheduler, at a chosen run through FRETWEAR_SWEEP_KILL_AFTER_RUNS) is finished by the same command with --resume;
 // the runs that were complete are kept (not run again), the others run, and the table equals that of a sweep that
 // was never stopped.
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <map>
@@ -62,7 +63,9 @@ TEST_CASE("a sweep killed after 5 of 12 runs is finished by --resume: complete r
 
   const Outcome resumed = s.fretwear(args("killed.json", {"--jobs", "2", "--resume"}));
   REQUIRE_MESSAGE(resumed.exited(kDone), resumed.describe());
-  CHECK_MESSAGE(resumed.err.find(std::to_string(complete.size()) + " kept") != std::string::npos, resumed.err);
+  CHECK_MESSAGE(resumed.err.find(std::to_string(complete.size()) + " kept from the sweep that was stopped") !=
+                    std::string::npos,
+                resumed.err);
   for (const auto& [name, before] : complete) {
     CAPTURE(name);
     CHECK(identity(s.work / "killed" / "sweep" / "runs" / name / "summary.json") == before);
@@ -100,4 +103,38 @@ TEST_CASE("--resume keeps no run of another scene, and with nothing to resume ru
   REQUIRE_MESSAGE(first.exited(kDone), first.describe());
   CHECK(first.err.find("0 kept") != std::string::npos);
   CHECK(fs::exists(fresh.work / "out" / "sweep" / "sweep.csv"));
+}
+
+TEST_CASE("--resume keeps the runs of the last finished sweep, saying so, and no run whose scene has lost a key") {
+  // A run is kept only when its resolved scene is the variant's: one that holds every value of the variant's scene
+  // and more (here an effects.crack since taken out of the scene) is another run.
+  Scratch s;
+  json scene = sweep_scene(s.work / "out");
+  scene["effects"]["crack"] = {{"at", "trailing_edge"}, {"lengths", {1e-5, 2e-5}}};
+  s.write("s.json", scene.dump());
+  const std::vector<std::string> vary{"sweep", "s.json", "--vary", "load.P=1e5,2e5", "--jobs", "2"};
+  const Outcome first = s.fretwear(vary);
+  REQUIRE_MESSAGE(first.exited(kDone), first.describe());
+  auto with_resume = vary;
+  with_resume.push_back("--resume");
+  const Outcome again = s.fretwear(with_resume);
+  REQUIRE_MESSAGE(again.exited(kDone), again.describe());
+  CHECK_MESSAGE(again.err.find("2 kept from the last finished sweep") != std::string::npos, again.err);
+  CHECK_MESSAGE(again.err.find("stopped") == std::string::npos, again.err);
+
+  scene["effects"].erase("crack");
+  s.write("s.json", scene.dump());
+  const Outcome resumed = s.fretwear(with_resume);
+  REQUIRE_MESSAGE(resumed.exited(kDone), resumed.describe());
+  CHECK_MESSAGE(resumed.err.find("0 kept") != std::string::npos, resumed.err);
+  const auto rows = csv_rows(s.work / "out" / "sweep" / "sweep.csv", "timings.total_s");
+  REQUIRE(rows.size() == 3);
+  const auto column = std::find(rows[0].begin(), rows[0].end(), "crack.K_I_max_Pa_sqrt_m") - rows[0].begin();
+  REQUIRE(std::size_t(column) < rows[0].size());
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    CHECK_MESSAGE(rows[i][std::size_t(column)].empty(), rows[i][std::size_t(column)]);
+    const json resolved =
+        json::parse(read_file(s.work / "out" / "sweep" / "runs" / rows[i][2] / "scene.resolved.json"));
+    CHECK_FALSE(resolved["effects"].contains("crack"));
+  }
 }

@@ -128,8 +128,18 @@ WindowChoice choose_window(const Profile& profile, double A, double P, int cells
       half = 0.5 * std::max(0.5 * (hi - lo), 1e-9);
       continue;
     }
-    const double xl = zones.front().left.x, xr = zones.back().right.x;
+    double xl = zones.front().left.x, xr = zones.back().right.x;
     const double bl = 0.5 * (zones.front().right.x - xl), br = 0.5 * (xr - zones.back().left.x);
+    // An asperity inside the trial window that its cells passed over (a contact narrower than a cell, its share of
+    // the load taken by a cell nearer to another asperity's lowest point) while the trial's approach presses it
+    // through: it touches, and the window takes it in.
+    for (double x : asperities) {
+      if (x < trial.x_min || x > trial.x_max) continue;
+      const bool in_zone = std::any_of(zones.begin(), zones.end(), [&](const Zone& z) {
+        return x >= z.left.x - trial.h() && x <= z.right.x + trial.h();
+      });
+      if (!in_zone && gap_after(profile, kernel, state, x) < 0.0) xl = std::min(xl, x), xr = std::max(xr, x);
+    }
     // Resolve the zones with at least a few trial cells; else shrink the trial window around them and redo.
     const double margin_l = std::max(kMargin * bl, 2.0 * trial.h()), margin_r = std::max(kMargin * br, 2.0 * trial.h());
     (void)cells;

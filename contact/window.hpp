@@ -7,7 +7,8 @@
 //   half-width, for Hertz 1.25 a) may touch; a coarse trial solve over that set, widened until the contact stays off
 //   the trial window's ends, gives the zones, and the window is their extent plus the margin. The separate asperities
 //   of an envelope are found however far apart they are: each one's lowest point is a candidate, taken in when its
-//   gap is within A P / 2 or when the trial solution would press it through.
+//   gap is within A P / 2 or when the trial solution would press it through (beyond the trial window, or within it
+//   where its cells, wider than the contacts, passed over it).
 #pragma once
 
 #include <string>

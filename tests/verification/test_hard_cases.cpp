@@ -182,17 +182,18 @@ TEST_CASE("a table sampled from the Hertz parabola gives the Hertz contact") {
   CHECK(std::abs(r.p_max / hz.p0 - 1.0) <= 0.25 * (h / hz.a) * (h / hz.a) + 10.0 * kSolverTolerance + interpolation);
 }
 
-TEST_CASE("two asperities 60 mm apart: the window chooser finds both") {
-  // Far beyond the chooser's scan of ±100 contact widths about the first asperity (27 mm here): the second is found
-  // from the envelope's terms. 16384 cells over ~60 mm leave ~40 cells per zone; each carries half the load to the
-  // O(h/a) of its sub-cell placement.
-  const double A = A_strain(), P = 1e5, d = 30e-3;
+namespace {
+
+// Two equal cylinders at ±d on `cells`: two zones, each carrying half the load at its own asperity, to the O(h/a) of
+// its sub-cell placement.
+void check_two_asperities(double d, int cells) {
+  const double A = A_strain(), P = 1e5;
   ProfileSpec spec;
   spec.type = ProfileType::envelope;
   spec.terms = {cylinder(), cylinder()};
   spec.terms[0].offset_x = -d;
   spec.terms[1].offset_x = d;
-  const NormalResult r = solve_normal(scene(spec, P, 16384));
+  const NormalResult r = solve_normal(scene(spec, P, cells));
   check_sound(r, P);
   REQUIRE(r.zones.size() == 2);
   const auto hz = closed_form::hertz(0.5 * P, A, kR);
@@ -204,4 +205,19 @@ TEST_CASE("two asperities 60 mm apart: the window chooser finds both") {
     CHECK(std::abs(load / (0.5 * P) - 1.0) <= h / hz.a);
     CHECK(std::abs(0.5 * (z.left.x + z.right.x) - (k == 0 ? -d : d)) <= h);
   }
+}
+
+}  // namespace
+
+TEST_CASE("two asperities 60 mm apart: the window chooser finds both") {
+  // Far beyond the chooser's scan of ±100 contact widths about the first asperity (27 mm here): the second is found
+  // from the envelope's terms. 16384 cells over ~60 mm leave ~40 cells per zone.
+  check_two_asperities(30e-3, 16384);
+}
+
+TEST_CASE("two asperities 1 m apart, each contact far narrower than a trial cell: the window chooser finds both") {
+  // The trial solve's 512 cells over 1.5 m are 3 mm wide, 20 times the contacts (0.15 mm): the cell nearer to one
+  // asperity's lowest point takes the whole load, and the other asperity, pressed through by the trial's approach,
+  // is taken into the window all the same. 262144 cells leave ~19 cells per zone.
+  check_two_asperities(0.5, 262144);
 }

@@ -77,6 +77,16 @@ void slip_resolution(const NormalResult& n, const CycleStage& cycle, std::vector
                    fmt::format("the narrowest slip zone spans {:.3g} cell(s) of {:.4g} m; at least {} resolve the slip "
                                "and the dissipated energy: give more grid.cells or a narrower grid.window",
                                narrowest / h, h, kMinSlipCells)});
+  // The stick zones (near the stick limit they shrink to a few cells, and their extent, the slip beside them and
+  // the wear limit over them are then the grid's).
+  double narrowest_stick = INFINITY;
+  for (const auto& s : c.stick_zones) narrowest_stick = std::min(narrowest_stick, s.second - s.first);
+  if (narrowest_stick < kMinStickCells * h)
+    out.push_back({"stick_zone_under_resolved",
+                   fmt::format("the narrowest stick zone spans {:.3g} cell(s) of {:.4g} m; at least {} resolve its "
+                               "extent, the slip beside it and the wear limit over it (the load is near the stick "
+                               "limit, or the contact is narrow): give more grid.cells or a narrower grid.window",
+                               narrowest_stick / h, h, kMinStickCells)});
 }
 
 // The Mindlin stick zone of a Hertz contact under force control (c/a = √(1 − Q/fP), shifted by a bulk stress;

@@ -16,9 +16,12 @@ struct Warning {
   std::string message;  // what is wrong, with the numbers, and what to do
 };
 
-// The fewest cells a contact zone and a slip zone must span to be resolved, the share by which a closed form may be
-// missed, and the run time past which a warning is given (s).
+// The fewest cells a contact zone, a stick zone and a slip zone must span to be resolved, the share by which a closed
+// form may be missed, and the run time past which a warning is given (s). A stick zone's ends are located within a
+// cell or so (by the shear's margin to f p), and the wear limit is the complete contact over the stick zones: 16
+// cells leave them within a few per cent, as a contact zone's ends.
 inline constexpr int kMinContactCells = 16;
+inline constexpr int kMinStickCells = 16;
 inline constexpr int kMinSlipCells = 4;
 inline constexpr double kClosedFormTolerance = 0.05;
 inline constexpr double kLongRunSeconds = 3600.0;

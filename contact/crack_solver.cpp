@@ -166,6 +166,9 @@ class FaceContact {
   Eigen::VectorXd g, h;     // the opening and the slip integrals Q φ₁, Q φ₂ at the collocation points (Pa)
   double K_I = 0.0;         // √(2πl) φ₁(1) (Pa√m)
   int passes = 0;
+  // When settle() fails: whether it met a cycle of sets, and the least violation of the sets it tried (Pa).
+  bool cycled = false;
+  double least_violation = 0.0;
 
  private:
   // A set tried, with its solution and its largest violation.
@@ -208,6 +211,9 @@ bool FaceContact::close_overlaps(double K_I_open) {
 
 bool FaceContact::settle(int max_passes, double load) {
   std::vector<Pass> tried;  // every set tried: a set met again closes a cycle
+  const auto least = [&](std::vector<Pass>::const_iterator first) {
+    return std::min_element(first, tried.cend(), [](const Pass& u, const Pass& v) { return u.worst < v.worst; })->worst;
+  };
   for (int it = 1; it <= max_passes; ++it) {
     passes = it;
     solve_on_set();
@@ -224,8 +230,13 @@ bool FaceContact::settle(int max_passes, double load) {
       state[worst->second] = next[worst->second];
     }
     const auto seen = std::find_if(tried.begin(), tried.end(), [&](const Pass& q) { return q.state == state; });
-    if (seen != tried.end()) return keep_best(seen, tried.end(), load);
+    if (seen != tried.end()) {
+      if (keep_best(seen, tried.end(), load)) return true;
+      cycled = true, least_violation = least(seen);
+      return false;
+    }
   }
+  least_violation = least(tried.cbegin());
   return false;
 }
 
@@ -319,9 +330,14 @@ CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std
     r.contact_iterations = c.passes;
     if (!settled)
       throw ConvergenceError(fmt::format(
-          "crack face contact: the open/stick/slip set did not settle in {} passes (l = {} m, angle {}°, face "
-          "friction {}); raise max_contact_iterations or change the quadrature",
-          options_.max_contact_iterations, l, crack_.angle_deg, crack_.face_friction));
+          "crack face contact: the open/stick/slip set {}, its least violation {:.3g} Pa, {:.2g} of the largest "
+          "load on the faces (accepted up to {:.2g} at a cycle), at l = {} m, angle {}°, face friction {}, {} "
+          "points: a boundary between open, sticking and slipping points that falls between two of them; change "
+          "effects.crack.quadrature",
+          c.cycled ? fmt::format("cycles after {} passes", c.passes)
+                   : fmt::format("did not settle in {} passes", options_.max_contact_iterations),
+          c.least_violation, c.least_violation / load, kCycleTolerance, l, crack_.angle_deg, crack_.face_friction,
+          s_.size()));
   }
   r.closed = c.state[0] != 0;
   r.K_I = r.closed ? 0.0 : std::max(c.K_I, 0.0);

@@ -2,6 +2,7 @@
 // results in memory with numpy arrays, files only where asked.
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <map>
@@ -232,7 +233,9 @@ py::list validate(py::handle scene_arg, py::handle output_arg) {
     SceneArgument arg = scene_argument(scene_arg);
     const std::optional<fs::path> output = output_argument(output_arg);
     if (output) arg.scene.output_dir = *output;
-    problems = problems_before_solving(arg.scene, arg.scene_file, output.has_value(), nullptr);
+    Preflight checked;
+    problems = problems_before_solving(arg.scene, arg.scene_file, output.has_value(), &checked);
+    if (problems.empty()) warn(checked.warnings);  // as `fretwear validate` prints them (long_run, window_reached)
   } catch (py::error_already_set& e) {
     if (!e.matches(g_scene_error)) throw;
     return e.value().attr("problems");
@@ -244,7 +247,10 @@ py::object defaults(const std::optional<std::string>& effect) {
   try {
     return to_python(default_scene_json(effect.value_or("")));
   } catch (const InputError& e) {
-    PyErr_SetObject(PyExc_ValueError, text(e.what()).ptr());
+    // The engine words it for the command line's option (--effect: ...); here it is the argument `effect`.
+    std::string message = e.what();
+    if (message.starts_with("--effect: ")) message = "effect: " + message.substr(std::strlen("--effect: "));
+    PyErr_SetObject(PyExc_ValueError, text(message).ptr());
     throw py::error_already_set();
   }
 }
@@ -281,6 +287,8 @@ Every problem of a scene that fretwear.run would refuse, each "json.path: what i
 path first, "(top)" for the scene itself), or [] for a valid scene. Makes every check run makes before solving: the
 format, the ranges, the physics that shows before solving (the contact strain, the cycle's route, a wear run's
 estimated time, refused past a day) and, when `output` names a folder, the output folder's rules. Writes nothing.
+A valid scene's warnings before solving (a wear run estimated past an hour, a gross-slip scar near the window's
+end) are given as FretwearWarning, as run gives them.
 )doc";
 
 const char* kDefaultsDoc = R"doc(defaults(effect=None) -> dict

@@ -80,6 +80,17 @@ def test_paths_may_be_bytes_and_an_output_path_must_be_utf8(in_empty_folder):
     assert files_under(in_empty_folder) == sorted(["s.json", "out", *(f"out/{f}" for f in os.listdir("out"))])
 
 
+def test_validate_gives_the_warnings_before_solving_as_the_command_line_prints_them(monkeypatch):
+    # The explicit stepper over 1e12 cycles: 2.47e9 cycle solves, each fixed at 10 µs by the test hook
+    # FRETWEAR_CYCLE_SOLVE_SECONDS, as tests/regression/regression_silent_nonsense.cpp times it: past the hour that
+    # warns, short of the day that refuses.
+    monkeypatch.setenv("FRETWEAR_CYCLE_SOLVE_SECONDS", "1e-5")
+    scene = example("hertz_wear", **{"grid.cells": 256, "effects.wear.k": 2.5e-14, "effects.wear.cycles": 1e12,
+                                     "effects.wear.stepper": "explicit"})
+    with pytest.warns(fretwear.FretwearWarning, match=r"^long_run: 1e\+12 cycles with stepper \"explicit\""):
+        assert fretwear.validate(scene) == []
+
+
 def test_the_physics_checks_before_solving_are_the_command_lines():
     scene = example("hertz_normal", **{"load.P": 1e11})  # a contact strain far beyond linear elasticity
     problems = fretwear.validate(scene)
@@ -163,7 +174,7 @@ def test_defaults_and_version_are_the_command_lines():
     assert fretwear.defaults() == json.loads(out)
     _, out, _ = cli("defaults", "--effect", "crack")
     assert fretwear.defaults("crack") == json.loads(out)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r'^effect: "nothing" is not an effect; use '):
         fretwear.defaults("nothing")
     _, out, _ = cli("--version")
     assert out.split() == ["fretwear", fretwear.__version__]

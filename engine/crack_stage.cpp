@@ -84,6 +84,43 @@ std::vector<SifSet> crack_sifs(const Grid& grid, const std::vector<Phase>& phase
   return out;
 }
 
+std::optional<QuadratureCheck> quadrature_check(const Scene& scene, const Model& model, const NormalResult& normal,
+                                                const CycleStage* cycle, const WearStage* wear,
+                                                const std::vector<SifSet>& sifs) {
+  CrackEffect half = *scene.crack;
+  const int n = scene.crack->quadrature;
+  half.quadrature = n / 2 >= 2 ? n / 2 : 2 * n;  // 2 or 3 points: against twice as many
+  if (sifs.empty()) return std::nullopt;
+  const double x = crack_position(*scene.crack, normal);
+  const double last = sifs.back().cycles;
+  const std::vector<Phase> phases = wear ? cycle_phases(scene, wear->records.back().p, &wear->records.back().q)
+                                         : cycle_phases(scene, normal, cycle);
+  QuadratureCheck check{scene.crack->quadrature, half.quadrature, true, 0.0, false, 0.0, ""};
+  std::vector<SifSet> coarse;
+  try {
+    coarse = crack_sifs(model.grid, phases, x, half, last);
+  } catch (const ConvergenceError&) {
+    check.settled = false;  // the face contact cycles on the other points: no estimate from them
+    return check;
+  }
+  double scale = 0.0;
+  for (const SifSet& set : sifs)
+    if (set.cycles == last)
+      for (const CrackSif& k : set.result.sifs) scale = std::max({scale, std::abs(k.K_I), std::abs(k.K_II)});
+  if (!(scale > 0.0)) return std::nullopt;
+  for (const SifSet& c : coarse)
+    for (const SifSet& set : sifs) {
+      if (set.cycles != last || set.phase != c.phase) continue;
+      for (std::size_t i = 0; i < set.result.sifs.size(); ++i) {
+        const CrackSif &fine = set.result.sifs[i], &k = c.result.sifs[i];
+        const double d = std::max(std::abs(fine.K_I - k.K_I), std::abs(fine.K_II - k.K_II)) / scale;
+        check.opens_or_closes = check.opens_or_closes || fine.closed != k.closed;
+        if (d > check.change) check.change = d, check.at_l = fine.l, check.phase = set.phase;
+      }
+    }
+  return check;
+}
+
 double crack_position(const CrackEffect& effect, const NormalResult& normal) {
   switch (effect.at) {
     case CrackPosition::trailing_edge: return normal.zones.front().left.x;

@@ -2,6 +2,7 @@
 // the bottom of the load cycle, for the initial contact and every recorded wear state.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,23 @@ double crack_position(const CrackEffect& effect, const NormalResult& normal);
 // each record (stop_point()).
 std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const NormalResult& normal,
                               const CycleStage* cycle, const WearStage* wear, const StopCheck& stop = {});
+
+// How far the SIFs of the last state move from half the scene's quadrature points to all of them (from all of them
+// to twice as many, for 2 or 3 points): the largest change of K_I or K_II over the lengths and phases, as a share of
+// the largest |K| there, and whether a length opens or closes between the two. The SIFs converge at first to second
+// order in the points near a contact's edge, so the change bounds about the error left at the scene's points. Empty
+// without SIFs; `settled` false when the face contact does not settle on the other points (no estimate).
+struct QuadratureCheck {
+  int points = 0, other = 0;
+  bool settled = true;
+  double change = 0.0;     // share of the largest |K|
+  bool opens_or_closes = false;
+  double at_l = 0.0;       // the length where the change is largest (m)
+  std::string phase;       // and its phase
+};
+std::optional<QuadratureCheck> quadrature_check(const Scene& scene, const Model& model, const NormalResult& normal,
+                                                const CycleStage* cycle, const WearStage* wear,
+                                                const std::vector<SifSet>& sifs);
 
 // Its part of summary.json: "crack" (the SIFs of the last state, one per length, at the top and the bottom).
 nlohmann::json summarise_crack(const Scene& scene, const std::vector<SifSet>& sifs, double x);

@@ -63,7 +63,12 @@ RunResult Simulation::run(const WearControl* control) const {
   if (setup.effects.crack && reached) {
     r.crack_x = crack_position(*scene_.crack, r.normal);
     stop_point(stop, "crack");
-    r.sifs = timed(r.timings.crack, [&] { return run_crack(scene_, model, r.normal, cycle, wear, stop); });
+    r.sifs = timed(r.timings.crack, [&] {
+      auto sifs = run_crack(scene_, model, r.normal, cycle, wear, stop);
+      stop_point(stop, "crack");
+      r.crack_quadrature = quadrature_check(scene_, model, r.normal, cycle, wear, sifs);
+      return sifs;
+    });
   }
   if (setup.effects.life && reached)
     r.life = timed(r.timings.life, [&] {

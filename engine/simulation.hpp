@@ -39,6 +39,7 @@ struct RunResult {
   std::vector<StressMap> stress_maps;      // at the top and bottom of every state (initial, then each record)
   std::vector<SifSet> sifs;                // at the top and bottom of every state (initial, then each record)
   double crack_x = 0.0;                    // where the crack is (m)
+  std::optional<QuadratureCheck> crack_quadrature;  // the last state's SIFs against half the points
   std::optional<FatigueStage> fatigue;     // SWT and Ruiz of every state, with the stress maps of a cycle
   std::optional<LifeStage> life;           // initiation and growth over the states the run went through
   Timings timings;

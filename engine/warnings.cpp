@@ -110,6 +110,28 @@ void mindlin_missed(const Scene& scene, const RunResult& r, std::vector<Warning>
                                stick.c, 100.0 * error, 100.0 * kClosedFormTolerance)});
 }
 
+// The crack's SIFs against half its quadrature points (QuadratureCheck).
+void crack_quadrature(const RunResult& r, std::vector<Warning>& out) {
+  if (!r.crack_quadrature) return;
+  const QuadratureCheck& c = *r.crack_quadrature;
+  if (!c.settled) {
+    out.push_back({"crack_quadrature",
+                   fmt::format("the stress intensity factors on {} points could not be checked against {}, where the "
+                               "crack faces' contact does not settle: compare them with another "
+                               "effects.crack.quadrature",
+                               c.points, c.other)});
+    return;
+  }
+  if (!(c.change > kCrackQuadratureShare) && !c.opens_or_closes) return;
+  out.push_back({"crack_quadrature",
+                 fmt::format("the stress intensity factors on {} points differ from those on {} by {:.3g} % of the "
+                             "largest (at l = {:.4g} m, {}){}: near a contact's edge they converge at first to second "
+                             "order in the points, so up to about that much error is left; raise "
+                             "effects.crack.quadrature",
+                             c.points, c.other, 100.0 * c.change, c.at_l, c.phase,
+                             c.opens_or_closes ? ", and a length opens or closes between the two" : "")});
+}
+
 void crack_placement(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
   const Grid& g = r.normal.grid;
   const double width = g.x_max - g.x_min;
@@ -253,7 +275,7 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
     history_increments(scene, *result.cycle, out);
     mindlin_missed(scene, result, out);
   }
-  if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out);
+  if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out), crack_quadrature(result, out);
   if (result.wear && !result.wear->records.empty()) {
     wear_overshoot(scene, result, out);
     worn_zigzag(scene, result, out);

@@ -25,6 +25,11 @@ inline constexpr int kMinStickCells = 16;
 inline constexpr int kMinSlipCells = 4;
 inline constexpr double kClosedFormTolerance = 0.05;
 inline constexpr double kLongRunSeconds = 3600.0;
+// The largest change of the SIFs from half the crack's quadrature points to all of them, as a share of the largest
+// |K|, before a warning (QuadratureCheck). From 30 to the default 60 points they move by 0.05 to 0.25 % on the
+// examples, and by 1.25 % at a sharp punch's edge (paper000_fig6_ab_1, where 60 points are 0.4 % from 240: between
+// first and second order).
+inline constexpr double kCrackQuadratureShare = 0.02;
 // How far a wear run may pass the directly computed asymptote from the grid alone (its stick zones' ends at cell
 // boundaries, WearAsymptote::cells_worn_area) before a warning: what one zone aligned to the cells leaves on the
 // default grid is below 0.1 % (hertz_wear), so 0.5 % flags a grid whose other zones' ends cost several times that.

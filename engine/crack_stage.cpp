@@ -134,7 +134,10 @@ std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const Norm
                               const CycleStage* cycle, const WearStage* wear, const StopCheck& stop) {
   const CrackEffect& c = *scene.crack;
   const double x = crack_position(c, normal);
-  if (!wear) return crack_sifs(model.grid, cycle_phases(scene, normal, cycle), x, c, 0.0);
+  if (!wear) {
+    stop_point(stop, "crack");
+    return crack_sifs(model.grid, cycle_phases(scene, normal, cycle), x, c, 0.0);
+  }
   std::vector<SifSet> sifs;
   for (const WearRecord& rec : wear->records) {
     stop_point(stop, "crack");

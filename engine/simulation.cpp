@@ -53,7 +53,6 @@ RunResult Simulation::run(const WearControl* control) const {
   const WearStage* wear = r.wear ? &*r.wear : nullptr;
   if (setup.effects.stress && reached)
     r.stress_maps = timed(r.timings.stress, [&] {
-      stop_point(stop, "stress");
       auto maps = run_stress(scene_, model, r.normal, cycle, wear, stop);
       if (setup.effects.fatigue)  // the fatigue measures from each state's top and bottom maps
         r.fatigue =
@@ -62,7 +61,6 @@ RunResult Simulation::run(const WearControl* control) const {
     });
   if (setup.effects.crack && reached) {
     r.crack_x = crack_position(*scene_.crack, r.normal);
-    stop_point(stop, "crack");
     r.sifs = timed(r.timings.crack, [&] {
       auto sifs = run_crack(scene_, model, r.normal, cycle, wear, stop);
       stop_point(stop, "crack");

@@ -4,13 +4,16 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
 
 #include "common/error.hpp"
+#include "contact/complementarity.hpp"
 
 namespace fretwear {
 
@@ -140,6 +143,9 @@ namespace {
 
 // Every active-set pass changes all the violating points up to this many passes, then only the worst one.
 constexpr int kAllAtOnce = 20;
+// Lemke's pivots allowed per unknown of the complementarity problem (about one took the shallow cracks whose passes
+// cycled).
+constexpr int kMaxPivots = 50;
 
 // The contact of the crack faces at the collocation points by an active set (header, "Face contact"): each point
 // open (0), stuck (1) or slipping (±2, with the sign of the slip h). On a set the closed points' rows of M φ = −σ
@@ -156,9 +162,15 @@ class FaceContact {
   // The open crack's set, from its density phi: closed where its faces overlap (g < 0) and at the tip if
   // K_I_open < 0. Returns whether any point closed.
   bool close_overlaps(double K_I_open);
-  // Pass after pass from that set until no inequality is violated, or a cycle of sets keeps its least violating one
-  // (if its violation is below kCycleTolerance of the load). False if neither happens in max_passes.
-  bool settle(int max_passes, double load);
+  // Pass after pass from the present set until no inequality is violated (true), a set met before closes a cycle,
+  // or max_passes run out (false). The passes add to `passes`; a cycle's least violating set is kept aside for
+  // keep_cycle_best().
+  bool settle(int max_passes);
+  // The set the contact's linear complementarity problem gives (header), the starting set of a settle() that has
+  // met a cycle; false if the pivoting found no solution.
+  bool complementary_set();
+  // A cycle's least violating set and its solution, if its violation is below kCycleTolerance of the load.
+  bool keep_cycle_best(double load);
 
   std::vector<int> state;   // 0 open, 1 stick, ±2 slip with sign(h) = ±1
   Eigen::VectorXd phi;      // (φ₁, φ₂) at the nodes (Pa)
@@ -168,7 +180,9 @@ class FaceContact {
   int passes = 0;
   // When settle() fails: whether it met a cycle of sets, and the least violation of the sets it tried (Pa).
   bool cycled = false;
-  double least_violation = 0.0;
+  double least_violation = std::numeric_limits<double>::infinity();
+  // Whether the complementarity problem was solved (0 not tried, 1 solved, −1 no solution found).
+  int complementarity = 0;
 
  private:
   // A set tried, with its solution and its largest violation.
@@ -183,11 +197,11 @@ class FaceContact {
   int closing(double slip) const { return slip > 0.0 ? 2 : slip < 0.0 ? -2 : f_ > 0.0 ? 1 : 2; }
   // φ, the tractions, g, h and K_I on the current set.
   void solve_on_set();
+  // The density φ, and from it the tractions, g, h and K_I.
+  void take(const Eigen::VectorXd& density);
   // Every violated inequality, by how much (Pa), and in next the state that removes it.
   std::vector<std::pair<double, Eigen::Index>> violations(std::vector<int>& next) const;
-  // The least violating set of the cycle [first, last) and its solution, if its violation is a discretisation-sized
-  // fraction of the load.
-  bool keep_best(std::vector<Pass>::const_iterator first, std::vector<Pass>::const_iterator last, double load);
+  std::optional<Pass> cycle_best_;  // the least violating set of the cycles met
 
   const Eigen::MatrixXd& M_;
   const Eigen::MatrixXd& Q_;
@@ -209,19 +223,17 @@ bool FaceContact::close_overlaps(double K_I_open) {
   return overlap;
 }
 
-bool FaceContact::settle(int max_passes, double load) {
+bool FaceContact::settle(int max_passes) {
   std::vector<Pass> tried;  // every set tried: a set met again closes a cycle
-  const auto least = [&](std::vector<Pass>::const_iterator first) {
-    return std::min_element(first, tried.cend(), [](const Pass& u, const Pass& v) { return u.worst < v.worst; })->worst;
-  };
   for (int it = 1; it <= max_passes; ++it) {
-    passes = it;
+    ++passes;
     solve_on_set();
     std::vector<int> next = state;
     const auto violated = violations(next);
     if (violated.empty()) return true;
     const auto worst = std::max_element(violated.begin(), violated.end());
     tried.push_back({state, phi, worst->first});
+    least_violation = std::min(least_violation, worst->first);
     // The first passes change every violating point, later ones only the worst, which breaks the cycles a stick–slip
     // or open–closed boundary falling between two collocation points can cause.
     if (it <= kAllAtOnce) {
@@ -231,13 +243,70 @@ bool FaceContact::settle(int max_passes, double load) {
     }
     const auto seen = std::find_if(tried.begin(), tried.end(), [&](const Pass& q) { return q.state == state; });
     if (seen != tried.end()) {
-      if (keep_best(seen, tried.end(), load)) return true;
-      cycled = true, least_violation = least(seen);
+      const auto best =
+          std::min_element(seen, tried.end(), [](const Pass& u, const Pass& v) { return u.worst < v.worst; });
+      if (!cycle_best_ || best->worst < cycle_best_->worst) cycle_best_ = *best;
+      cycled = true;
       return false;
     }
   }
-  least_violation = least(tried.cbegin());
   return false;
+}
+
+bool FaceContact::complementary_set() {
+  const Eigen::MatrixXd Minv = M_.partialPivLu().inverse();
+  // With the faces' pressure p and shear T at the collocation points as loads, φ = M⁻¹([−p; T] − σ), so that
+  // g = g₀ + G_p p + G_t T and h = h₀ + H_p p + H_t T.
+  const Eigen::VectorXd phi0 = -(Minv * sigma_);
+  const Eigen::VectorXd g0 = Q_ * phi0.head(N_), h0 = Q_ * phi0.tail(N_);
+  const Eigen::MatrixXd Gp = -(Q_ * Minv.topLeftCorner(N_, N_)), Gt = Q_ * Minv.topRightCorner(N_, N_);
+  const Eigen::MatrixXd Hp = -(Q_ * Minv.bottomLeftCorner(N_, N_)), Ht = Q_ * Minv.bottomRightCorner(N_, N_);
+  // The problem is posed on the points whose own compliance G_p,kk is positive: an inclined crack's last two or three
+  // points at the mouth, a corner the polynomial density does not resolve (header), close further under their own
+  // pressure, where no pivoting method can be relied on; the passes that follow settle them.
+  std::vector<Eigen::Index> J;
+  for (Eigen::Index k = 0; k < N_; ++k)
+    if (Gp(k, k) > 0.0) J.push_back(k);
+  const Eigen::Index m = Eigen::Index(J.size());
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(N_), T = Eigen::VectorXd::Zero(N_), slip = Eigen::VectorXd::Zero(N_);
+  std::optional<LcpSolution> s;
+  if (f_ == 0.0) {
+    s = solve_lcp(Gp(J, J), g0(J), kMaxPivots * int(m));
+    if (s) p(J) = s->z;
+  } else {
+    // With T = b⁻ − b⁺, the unknowns (p, b⁺, b⁻, s) are complementary to (g, s + h, s − h, f p − b⁺ − b⁻): where
+    // the faces slip, s = |h| and T = f p sign(h); where they stick, h = 0 and |T| ≤ f p; where they are open, p = 0
+    // and T = 0 (Stewart and Trinkle 1996, in two dimensions).
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(m, m), Z = Eigen::MatrixXd::Zero(m, m);
+    const Eigen::MatrixXd gp = Gp(J, J), gt = Gt(J, J), hp = Hp(J, J), ht = Ht(J, J);
+    Eigen::MatrixXd A(4 * m, 4 * m);
+    A << gp, -gt, gt, Z,  //
+        hp, -ht, ht, I,   //
+        -hp, ht, -ht, I,  //
+        f_ * I, -I, -I, Z;
+    Eigen::VectorXd q(4 * m);
+    q << g0(J), h0(J), -h0(J), Eigen::VectorXd::Zero(m);
+    s = solve_lcp(A, q, kMaxPivots * int(4 * m));
+    if (s) p(J) = s->z.head(m), T(J) = s->z.segment(2 * m, m) - s->z.segment(m, m), slip(J) = s->z.tail(m);
+  }
+  complementarity = s ? 1 : -1;
+  if (!s) return false;
+  const Eigen::VectorXd gap = g0 + Gp * p + Gt * T, h_all = h0 + Hp * p + Ht * T;
+  for (Eigen::Index k = 0; k < N_; ++k) {
+    if (p(k) > tol_) {
+      state[k] = f_ == 0.0 ? 2 : slip(k) > tol_ ? (T(k) > 0.0 ? 2 : -2) : 1;
+    } else {
+      state[k] = gap(k) < -tol_ ? closing(h_all(k)) : 0;
+    }
+  }
+  return true;
+}
+
+bool FaceContact::keep_cycle_best(double load) {
+  if (!cycle_best_ || cycle_best_->worst > kCycleTolerance * load) return false;
+  state = cycle_best_->state;
+  take(cycle_best_->phi);
+  return true;
 }
 
 void FaceContact::solve_on_set() {
@@ -258,7 +327,11 @@ void FaceContact::solve_on_set() {
       b(N_ + k) = -(sigma_(N_ + k) + fs * sigma_(k));
     }
   }
-  phi = A.partialPivLu().solve(b);
+  take(A.partialPivLu().solve(b));
+}
+
+void FaceContact::take(const Eigen::VectorXd& density) {
+  phi = density;
   const Eigen::VectorXd total = sigma_ + M_ * phi;
   Tn = total.head(N_);
   Tt = total.tail(N_);
@@ -289,22 +362,6 @@ std::vector<std::pair<double, Eigen::Index>> FaceContact::violations(std::vector
   return violated;
 }
 
-// A cycle: the discrete inequalities have no exact solution on these points (a zone boundary that falls between two
-// of them).
-bool FaceContact::keep_best(std::vector<Pass>::const_iterator first, std::vector<Pass>::const_iterator last,
-                            double load) {
-  const auto best = std::min_element(first, last, [](const Pass& u, const Pass& v) { return u.worst < v.worst; });
-  if (best->worst > kCycleTolerance * load) return false;
-  state = best->state;
-  phi = best->phi;
-  const Eigen::VectorXd kept = sigma_ + M_ * phi;
-  Tn = kept.head(N_);
-  Tt = kept.tail(N_);
-  g = Q_ * phi.head(N_);
-  K_I = scale_ * L_.dot(phi.head(N_));
-  return true;
-}
-
 }  // namespace
 
 CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std::span<const double> shear,
@@ -326,16 +383,25 @@ CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std
   r.K_I_open = scale * L.dot(c.phi.head(N));
   r.K_II_open = scale * L.dot(c.phi.tail(N));
   if (c.close_overlaps(r.K_I_open)) {
-    const bool settled = c.settle(options_.max_contact_iterations, load);
+    // The passes from the overlaps' set settle most contacts; where they cycle or run out, they start again from the
+    // set of the complementarity problem (exact where the problem has a solution on these points), and only if that
+    // does not settle either is a cycle's nearly satisfied set kept.
+    bool settled = c.settle(options_.max_contact_iterations);
+    if (!settled && c.complementary_set())
+      settled = c.settle(std::max(1, options_.max_contact_iterations - c.passes));
+    if (!settled) settled = c.keep_cycle_best(load);
     r.contact_iterations = c.passes;
     if (!settled)
       throw ConvergenceError(fmt::format(
-          "crack face contact: the open/stick/slip set {}, its least violation {:.3g} Pa, {:.2g} of the largest "
+          "crack face contact: the open/stick/slip set {}{}, its least violation {:.3g} Pa, {:.2g} of the largest "
           "load on the faces (accepted up to {:.2g} at a cycle), at l = {} m, angle {}°, face friction {}, {} "
           "points: a boundary between open, sticking and slipping points that falls between two of them; change "
           "effects.crack.quadrature",
           c.cycled ? fmt::format("cycles after {} passes", c.passes)
-                   : fmt::format("did not settle in {} passes", options_.max_contact_iterations),
+                   : fmt::format("did not settle in {} passes", c.passes),
+          c.complementarity < 0   ? ", and Lemke's pivoting found no solution of its complementarity problem"
+          : c.complementarity > 0 ? ", also when started from its complementarity problem's solution"
+                                  : "",
           c.least_violation, c.least_violation / load, kCycleTolerance, l, crack_.angle_deg, crack_.face_friction,
           s_.size()));
   }

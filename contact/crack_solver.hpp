@@ -61,8 +61,15 @@
 // where g < 0 or where K_I < 0 at an open tip; opening where p < 0; slipping where |T| > f p; sticking where the slip
 // reverses): every violating point changes in the first 20 passes, then only the worst one per pass. A zone boundary
 // falling between two collocation points can leave the discrete problem without an exact solution, and the set
-// cycles; then the cycle's least violating set is kept if its violation (an overlap or a tension, in the units of
-// the load) is below 1e-3 of the largest load on the line, and ConvergenceError is thrown otherwise. Each phase of the cycle is solved on its own as loaded proportionally from the uncracked, unloaded
+// cycles. Then the passes start again from the set of the linear complementarity problem the contact poses, with
+// the faces' pressure p and shear T at the t_k as loads (g = g₀ + G_p p + G_t T, h = h₀ + H_p p + H_t T through
+// M⁻¹): the unknowns (p, b⁺, b⁻, s), T = b⁻ − b⁺, complementary to (g, s + h, s − h, f p − b⁺ − b⁻) (Stewart and
+// Trinkle 1996, in two dimensions; (p, g) alone without friction), solved by Lemke's pivoting
+// (contact/complementarity.hpp). It is posed on the points whose own compliance G_p,kk is positive; an inclined
+// crack's last two or three points at the mouth, a corner the density's polynomial does not resolve, have none, and
+// the passes settle them. Only if these passes also cycle is the least violating set of the cycles kept, if its
+// violation (an overlap or a tension, in the units of the load) is below 1e-3 of the largest load on the line, and
+// ConvergenceError is thrown otherwise. Each phase of the cycle is solved on its own as loaded proportionally from the uncracked, unloaded
 // state: under proportional load the contact and stick zones are fixed, so that one solve is the monotonic history's
 // end; the unloading and reloading history within the cycle (reversed slip, locked-in shear) is not modelled. With
 // f = 0 at 90° the modes stay uncoupled and K_II is that of the open crack.

@@ -292,10 +292,17 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     };
     if (progress.enabled()) control.progress = [&progress](const WearProgress& p) { progress.update(p); };
   }
-  // Outside the wear stage's step boundaries a stop ends the run with nothing written. Tests only:
-  // FRETWEAR_STOP_IN_STAGE=<stage> raises SIGINT where that stage first asks (a Ctrl-C there, exactly).
+  // Outside the wear stage's step boundaries a stop ends the run with nothing written. Tests only, where a stage
+  // first asks (tangential, stress, crack, life): FRETWEAR_STOP_IN_STAGE=<stage> raises SIGINT (a Ctrl-C there,
+  // exactly); FRETWEAR_NOT_CONVERGED_IN_STAGE=<stage> throws the ConvergenceError of a solve there that stopped
+  // short, so that a test sees what a run that fails after its first stages writes.
   const char* stop_in = std::getenv("FRETWEAR_STOP_IN_STAGE");
-  control.stop_now = [stop_in](const char* stage) {
+  const char* fail_in = std::getenv("FRETWEAR_NOT_CONVERGED_IN_STAGE");
+  control.stop_now = [stop_in, fail_in](const char* stage) {
+    if (fail_in && std::string_view(fail_in) == stage)
+      throw ConvergenceError(fmt::format("{}: the solve stopped short of its tolerance "
+                                         "(FRETWEAR_NOT_CONVERGED_IN_STAGE, a test hook)",
+                                         stage));
     if (stop_in && std::string_view(stop_in) == stage && g_signal == 0) std::raise(SIGINT);
     return g_signal != 0;
   };
@@ -335,8 +342,11 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     if (!quiet) print_report(scene, result, summary, verbose);
   } catch (const ConvergenceError& e) {
     progress.finish();
+    // What the stages before the failure found is in the summary, and said on stderr as a completed run says it.
+    if (const auto* failed = dynamic_cast<const StageNotConverged*>(&e); failed && failed->partial())
+      print_warnings(failed->partial()->warnings);
     const DeferredStopSignals hold;
-    out.write_json("summary.json", not_converged_summary(scene, e.what()));
+    out.write_json("summary.json", not_converged_summary(scene, e, checked.warnings));
     out.commit();
     throw;
   } catch (const InputError&) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -35,44 +37,65 @@ auto timed(std::optional<double>& seconds, Stage stage) {
 RunResult Simulation::run(const WearControl* control) const {
   const auto t0 = std::chrono::steady_clock::now();
   RunResult r;
-  const Setup setup = make_setup(scene_);
-  const Model& model = setup.model;
-  const StopCheck stop = control ? control->stop_now : StopCheck{};
-  r.normal = solve_normal(scene_, model);
-  r.timings.normal = seconds_since(t0);
-  if (setup.effects.cycle) {
-    stop_point(stop, "tangential");
-    r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
+  const char* stage = "normal";  // the stage solving, named when its solve does not converge
+  try {
+    const Setup setup = make_setup(scene_);
+    const Model& model = setup.model;
+    const StopCheck stop = control ? control->stop_now : StopCheck{};
+    r.normal = solve_normal(scene_, model);
+    r.timings.normal = seconds_since(t0);
+    if (setup.effects.cycle) {
+      stage = "tangential";
+      stop_point(stop, "tangential");
+      r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
+    }
+    if (setup.effects.wear) {
+      stage = "wear";
+      r.wear = timed(r.timings.wear,
+                     [&] { return run_wear(scene_, model, r.normal, *r.cycle, control ? *control : WearControl{}); });
+    }
+    // A wear run stopped on request ends the run there: stress and crack would show a state it did not reach.
+    const bool reached = !(r.wear && r.wear->interrupted);
+    const CycleStage* cycle = r.cycle ? &*r.cycle : nullptr;
+    const WearStage* wear = r.wear ? &*r.wear : nullptr;
+    if (setup.effects.stress && reached) {
+      stage = "stress";
+      r.stress_maps = timed(r.timings.stress, [&] {
+        auto maps = run_stress(scene_, model, r.normal, cycle, wear, stop);
+        if (setup.effects.fatigue)  // the fatigue measures from each state's top and bottom maps
+          r.fatigue =
+              run_fatigue(scene_, model.grid, record_phases(scene_, r.normal, cycle, wear), maps, *cycle, wear);
+        return maps;
+      });
+    }
+    if (setup.effects.crack && reached) {
+      stage = "crack";
+      r.crack_x = crack_position(*scene_.crack, r.normal);
+      r.sifs = timed(r.timings.crack, [&] {
+        auto sifs = run_crack(scene_, model, r.normal, cycle, wear, stop);
+        stop_point(stop, "crack");
+        r.crack_quadrature = quadrature_check(scene_, model, r.normal, cycle, wear, sifs);
+        return sifs;
+      });
+    }
+    if (setup.effects.life && reached) {
+      stage = "life";
+      r.life = timed(r.timings.life, [&] {
+        stop_point(stop, "life");
+        return run_life(scene_, model, r.normal, *cycle, wear, stop);
+      });
+    }
+  } catch (const ConvergenceError& e) {
+    // Each stage's result (and its time) is kept only once the stage completes, when timed() returns it: r holds
+    // those of the stages before `stage`.
+    std::shared_ptr<RunResult> partial;
+    if (std::string_view(stage) != "normal") {
+      r.timings.total = seconds_since(t0);
+      r.warnings = result_warnings(scene_, r);
+      partial = std::make_shared<RunResult>(std::move(r));
+    }
+    throw StageNotConverged(e.what(), stage, std::move(partial));
   }
-  if (setup.effects.wear)
-    r.wear = timed(r.timings.wear,
-                   [&] { return run_wear(scene_, model, r.normal, *r.cycle, control ? *control : WearControl{}); });
-  // A wear run stopped on request ends the run there: stress and crack would show a state it did not reach.
-  const bool reached = !(r.wear && r.wear->interrupted);
-  const CycleStage* cycle = r.cycle ? &*r.cycle : nullptr;
-  const WearStage* wear = r.wear ? &*r.wear : nullptr;
-  if (setup.effects.stress && reached)
-    r.stress_maps = timed(r.timings.stress, [&] {
-      auto maps = run_stress(scene_, model, r.normal, cycle, wear, stop);
-      if (setup.effects.fatigue)  // the fatigue measures from each state's top and bottom maps
-        r.fatigue =
-            run_fatigue(scene_, model.grid, record_phases(scene_, r.normal, cycle, wear), maps, *cycle, wear);
-      return maps;
-    });
-  if (setup.effects.crack && reached) {
-    r.crack_x = crack_position(*scene_.crack, r.normal);
-    r.sifs = timed(r.timings.crack, [&] {
-      auto sifs = run_crack(scene_, model, r.normal, cycle, wear, stop);
-      stop_point(stop, "crack");
-      r.crack_quadrature = quadrature_check(scene_, model, r.normal, cycle, wear, sifs);
-      return sifs;
-    });
-  }
-  if (setup.effects.life && reached)
-    r.life = timed(r.timings.life, [&] {
-      stop_point(stop, "life");
-      return run_life(scene_, model, r.normal, *cycle, wear, stop);
-    });
   r.timings.total = seconds_since(t0);
   r.warnings = result_warnings(scene_, r);
   return r;

@@ -5,12 +5,14 @@
 // make_summary() and write_results() (engine/output.hpp) loop over: a new effect adds its line there.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.hpp"
 #include "engine/crack_stage.hpp"
 #include "engine/cycle_stage.hpp"
 #include "engine/fatigue_stage.hpp"
@@ -46,11 +48,29 @@ struct RunResult {
   std::vector<Warning> warnings;  // what the results cannot be trusted for (engine/warnings.hpp)
 };
 
+// A solve that did not converge in one stage of Simulation::run(): the solver's message (what()), the stage, and
+// what the stages before it gave. A ConvergenceError, so that a caller wanting the message alone catches that.
+class StageNotConverged : public ConvergenceError {
+ public:
+  StageNotConverged(const std::string& message, std::string stage, std::shared_ptr<const RunResult> partial)
+      : ConvergenceError(message), stage_(std::move(stage)), partial_(std::move(partial)) {}
+  // Its name in summary.json (effects_run, timings): "normal", "tangential", "wear", "stress", "crack" or "life".
+  const std::string& stage() const { return stage_; }
+  // The normal contact and the stages that completed before stage(), with their timings (total: up to the failure)
+  // and their warnings (result_warnings); null when the normal stage failed.
+  const RunResult* partial() const { return partial_.get(); }
+
+ private:
+  std::string stage_;
+  std::shared_ptr<const RunResult> partial_;  // shared: an exception is copied as it is thrown
+};
+
 class Simulation {
  public:
   explicit Simulation(Scene scene) : scene_(std::move(scene)) {}
   // control (optional) steers the wear stage: progress, checkpoints, resume, stop. A wear stage stopped on request
   // (WearStage::interrupted) ends the run there: stress and crack, which use the last record, are not computed.
+  // A solve that does not converge throws StageNotConverged, holding what the stages before it gave.
   RunResult run(const WearControl* control = nullptr) const;
   const Scene& scene() const { return scene_; }
 

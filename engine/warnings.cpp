@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -12,16 +14,83 @@
 namespace fretwear {
 namespace {
 
+// The margin fretwear's own choice of window leaves beyond the contact, as a share of the outer zones' half-widths
+// on each side (kMargin of contact/window.cpp).
+constexpr double kWindowMargin = 0.5;
+
+// The contact as the advice sees it: from its first zone's left end to its last zone's right end, with the
+// half-widths of those outer zones (m). A single zone's come from its closed form, or else from the load–size
+// integral, where it has one: exact however coarse the grid. Otherwise they are the zones this grid locates, which a
+// zone over a few cells can show wider than it is.
+struct ContactSpan {
+  double left = 0.0, right = 0.0;      // m
+  double b_first = 0.0, b_last = 0.0;  // m
+};
+
+ContactSpan contact_span(const NormalResult& n) {
+  const Zone& first = n.zones.front();
+  const Zone& last = n.zones.back();
+  if (n.zones.size() == 1 && (n.reference || n.load_size_half_width)) {
+    const double c = n.reference ? n.reference->centre : 0.5 * (first.left.x + first.right.x);
+    const double b = n.reference ? n.reference->half_width : *n.load_size_half_width;
+    return {c - b, c + b, b, b};
+  }
+  return {first.left.x, last.right.x, 0.5 * (first.right.x - first.left.x), 0.5 * (last.right.x - last.left.x)};
+}
+
+// grid.cells rounded up to two significant digits: an advice, not a measurement.
+long cells_advice(double cells) {
+  const double scale = std::pow(10.0, std::max(0.0, std::floor(std::log10(cells)) - 1.0));
+  return std::lround(std::ceil(cells / scale) * scale);
+}
+
+// What resolves a feature `width` m wide (a contact, stick or slip zone) with `min_cells` cells, as the advice a
+// warning ends with. Cells are h = W / n over the window W, and a window must hold every zone of the contact (one
+// that clips it is refused), so the least window is the contact with fretwear's margin (contact_span). A narrower
+// grid.window helps only where W is at least kNarrowerWindowGain times that (a given window much wider than the
+// contact); where it is not (a window fretwear chose, or zones far apart that any window must span) only more
+// grid.cells help, about min_cells W / width.
+std::string resolution_advice(const NormalResult& n, double width, int min_cells) {
+  const ContactSpan span = contact_span(n);
+  const double left = span.left - kWindowMargin * span.b_first, right = span.right + kWindowMargin * span.b_last;
+  const double W = n.grid.width();
+  const double cells_here = min_cells * W / width, cells_around = min_cells * (right - left) / width;
+  auto cells = [](double needed) {
+    return needed > kMaxCells
+               ? fmt::format("about {}, more than grid.cells allows ({})", cells_advice(needed), kMaxCells)
+               : fmt::format("about {}", cells_advice(needed));
+  };
+  if (W >= kNarrowerWindowGain * (right - left)) {
+    const double spans = n.grid.n * width / (right - left);  // cells over the feature in that window
+    if (spans >= min_cells)
+      return fmt::format("give a narrower grid.window around the contact, such as [{:.4g}, {:.4g}] m (over it the "
+                         "same grid.cells give it about {:.0f}), or more grid.cells ({} in this window)",
+                         left, right, spans, cells(cells_here));
+    return fmt::format("give a narrower grid.window around the contact, such as [{:.4g}, {:.4g}] m, and more "
+                       "grid.cells ({} there; {} in this window)",
+                       left, right, cells(cells_around), cells(cells_here));
+  }
+  if (n.zones.size() > 1)
+    return fmt::format("the window must span the contact's {} zones, from x = {:.4g} to {:.4g} m, so a narrower "
+                       "grid.window cannot make the cells much finer: give more grid.cells ({})",
+                       n.zones.size(), span.left, span.right, cells(cells_here));
+  return fmt::format("the window is already about as narrow as the contact allows: give more grid.cells ({})",
+                     cells(cells_here));
+}
+
 void contact_resolution(const NormalResult& n, std::vector<Warning>& out) {
+  const ContactSpan span = contact_span(n);
   for (std::size_t k = 0; k < n.zones.size(); ++k) {
     const Zone& z = n.zones[k];
     const int cells = z.last_cell - z.first_cell + 1;
-    if (cells < kMinContactCells)
-      out.push_back({"contact_under_resolved",
-                     fmt::format("contact zone {} of {} spans {} cell(s) of {:.4g} m; at least {} resolve its pressure "
-                                 "(p_max and the extent are grid-dependent): give more grid.cells or a narrower "
-                                 "grid.window",
-                                 k + 1, n.zones.size(), cells, n.grid.h(), kMinContactCells)});
+    if (cells >= kMinContactCells) continue;
+    const double located = z.right.x > z.left.x ? z.right.x - z.left.x : cells * n.grid.h();
+    const double width = n.zones.size() == 1 ? span.right - span.left : located;
+    out.push_back({"contact_under_resolved",
+                   fmt::format("contact zone {} of {} spans {} cell(s) of {:.4g} m; at least {} resolve its pressure "
+                               "(p_max and the extent are grid-dependent): {}",
+                               k + 1, n.zones.size(), cells, n.grid.h(), kMinContactCells,
+                               resolution_advice(n, width, kMinContactCells))});
   }
 }
 
@@ -75,8 +144,8 @@ void slip_resolution(const NormalResult& n, const CycleStage& cycle, std::vector
   if (narrowest < kMinSlipCells * h)
     out.push_back({"slip_zone_under_resolved",
                    fmt::format("the narrowest slip zone spans {:.3g} cell(s) of {:.4g} m; at least {} resolve the slip "
-                               "and the dissipated energy: give more grid.cells or a narrower grid.window",
-                               narrowest / h, h, kMinSlipCells)});
+                               "and the dissipated energy: {}",
+                               narrowest / h, h, kMinSlipCells, resolution_advice(n, narrowest, kMinSlipCells))});
   // The stick zones (near the stick limit they shrink to a few cells, and their extent, the slip beside them and
   // the wear limit over them are then the grid's).
   double narrowest_stick = INFINITY;
@@ -85,8 +154,9 @@ void slip_resolution(const NormalResult& n, const CycleStage& cycle, std::vector
     out.push_back({"stick_zone_under_resolved",
                    fmt::format("the narrowest stick zone spans {:.3g} cell(s) of {:.4g} m; at least {} resolve its "
                                "extent, the slip beside it and the wear limit over it (the load is near the stick "
-                               "limit, or the contact is narrow): give more grid.cells or a narrower grid.window",
-                               narrowest_stick / h, h, kMinStickCells)});
+                               "limit, or the contact is narrow): {}",
+                               narrowest_stick / h, h, kMinStickCells,
+                               resolution_advice(n, narrowest_stick, kMinStickCells))});
 }
 
 // The Mindlin stick zone of a Hertz contact under force control (c/a = √(1 − Q/fP), shifted by a bulk stress;

@@ -25,6 +25,11 @@ inline constexpr int kMinStickCells = 16;
 inline constexpr int kMinSlipCells = 4;
 inline constexpr double kClosedFormTolerance = 0.05;
 inline constexpr double kLongRunSeconds = 3600.0;
+// A warning of too few cells advises a narrower grid.window only where the window used is at least this many times
+// as wide as the least window around the contact (warnings.cpp, resolution_advice): narrowed to it, the same cells are
+// at least twice as fine. A window fretwear chooses is that least window already, and zones far apart keep any
+// window that holds them wide.
+inline constexpr double kNarrowerWindowGain = 2.0;
 // The largest change of the SIFs from half the crack's quadrature points to all of them, as a share of the largest
 // |K|, before a warning (QuadratureCheck). From 30 to the default 60 points they move by 0.05 to 0.25 % on the
 // examples, and by 1.25 % at a sharp punch's edge (paper000_fig6_ab_1, where 60 points are 0.4 % from 240: between

@@ -387,7 +387,7 @@ int convergence(const std::string& path, int from, int to, bool quiet) {
   const std::filesystem::path dir = output_folder(scene, OutputCommand::convergence);
   OutputFolder out(dir, OutputCommand::convergence);
   const ConvergenceStudy study = run_convergence(scene, from, to, quiet ? nullptr : &std::cerr);
-  std::cout << study.table();
+  if (!quiet) std::cout << study.table();
   const DeferredStopSignals hold;
   out.write("convergence.csv", study.csv());
   out.write_json("scene.resolved.json", scene.to_json());

@@ -63,8 +63,32 @@ constexpr std::size_t kMaxName = 128;
 // A value as the user reads it: a string bare, anything else as JSON.
 std::string text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
+// A field of sweep.csv (RFC 4180): in double quotes, each of its own doubled, when it holds a comma, a quote or a
+// line break, or when `quoted` (an array, always quoted); as it is otherwise.
+std::string csv_field(const std::string& s, bool quoted = false) {
+  if (!quoted && s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + '"';
+}
+
+// A value in one form for every way of writing it: each number, at any depth, as the double it is (1e5, 100000
+// and 100000.0 are all 100000.0; −0 is 0.0), which JSON then writes in the shortest form that reads back to it
+// (100000.0, 0.2, 3e-07, 1e+20).
+json canonical(const json& v) {
+  if (v.is_number()) return json(v.get<double>() + 0.0);
+  if (!v.is_structured()) return v;
+  json c = v;
+  for (auto& item : c) item = canonical(item);
+  return c;
+}
+
+// A value as a run's name holds it: canonical, each character a name cannot hold made '_'.
 std::string word(const json& v) {
-  std::string s = v.is_string() ? v.get<std::string>() : v.dump();
+  std::string s = text(canonical(v));
   for (char& c : s)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
   return s;
@@ -117,11 +141,12 @@ std::vector<std::string> variation_problems(const std::vector<Variation>& variat
   return problems;
 }
 
-// Names the runs, each its folder's under runs/: the scene's name and every varied key with its value
-// (sw__load.P_200000.0), each character a name cannot hold made '_'. A name longer than kMaxName, or one that runs
-// of different values would share (a/p.csv and a_p.csv both give a_p.csv), is <scene name>__run<k> instead, k the
-// run's index in the product, the scene's name cut short as far as kMaxName needs. Any name two runs still share is
-// a problem.
+// Names the runs, each its folder's under runs/: the scene's name and every varied key with its value in canonical
+// form (sw__load.P_200000.0 for 2e5, 200000 or 200000.0), each character a name cannot hold made '_', so that a
+// number names one folder however it is written (and --resume finds it). A name longer than kMaxName, or one that
+// runs of different values would share (a/p.csv and a_p.csv both give a_p.csv), is <scene name>__run<k> instead, k
+// the run's index in the product, the scene's name cut short as far as kMaxName needs. Any name two runs still share
+// is a problem.
 std::vector<std::string> name_runs(const std::string& scene_name, const std::vector<Variation>& variations,
                                    std::vector<SweepRun>& runs) {
   std::map<std::string, std::size_t> uses;
@@ -321,6 +346,15 @@ SweepOutcome outcome_from_json(const json& j) {
   return o;
 }
 
+std::string status_word(int status) {
+  switch (status) {
+    case 0: return "completed";
+    case 2: return "refused";
+    case 3: return "not_converged";
+    default: return "internal_error";
+  }
+}
+
 std::unique_ptr<SweepDispatch> thread_dispatch(int jobs) { return std::make_unique<ThreadDispatch>(jobs); }
 
 SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& variations,
@@ -462,35 +496,36 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   dispatch->run_all(todo, run, done);
   if (!result.root) return result;
 
-  // The table: the varied values, the status, and the summary's scalars, each numeric column named with its unit.
+  // The table: the varied values, the status, the name, the summary's scalars (each numeric column named with its
+  // unit) and why a run failed.
   std::string csv;
-  for (const auto& v : variations) csv += column_name(v.key) + ",";
+  for (const auto& v : variations) csv += csv_field(column_name(v.key)) + ",";
   csv += "status,name";
   for (const Column& c : kColumns) csv += fmt::format(",{}{}{}", c.key, *c.unit ? "_" : "", c.unit);
-  csv += "\n";
+  csv += ",message\n";
   json table = json::array(), units = json::object();
   for (const Column& c : kColumns)
     if (*c.unit) units[c.key] = c.unit;
   for (const auto& v : variations)
     if (!key_unit(v.key).label.empty()) units[v.key] = key_unit(v.key).label;
   for (const SweepRun& r : result.runs) {
-    for (const auto& v : r.values) csv += (v.is_string() ? v.get<std::string>() : v.dump()) + ",";
-    csv += fmt::format("{},{}", r.status, r.name);
-    json row = {{"name", r.name}, {"status", r.status}, {"values", r.values}};
+    for (const auto& v : r.values) csv += csv_field(text(v)) + ",";
+    csv += fmt::format("{},{}", status_word(r.status), r.name);
+    json row = {{"name", r.name}, {"status", status_word(r.status)}, {"values", r.values}};
     for (const Column& c : kColumns) {
       const json v = get(r.summary, c.key);
-      std::string cell = v.is_null() ? "" : v.is_string() ? v.get<std::string>() : v.dump();
-      if (v.is_array()) cell = "\"" + cell + "\"";
-      csv += "," + cell;
+      csv += "," + (v.is_null() ? std::string() : csv_field(text(v), v.is_array()));
       row[c.key] = v;
     }
+    csv += "," + csv_field(r.message);
     if (!r.message.empty()) row["message"] = r.message;
     csv += "\n";
     table.push_back(row);
   }
   out->write("sweep.csv", csv);
   out->write_json("sweep.json", {{"scene", base_scene.name}, {"units", units}, {"runs", table}});
-  if (base_scene.plots) write_sweep_maps(result, base_scene.name, base_scene.wear.has_value(), bool(base_scene.life), *out);
+  write_sweep_maps(result, base_scene.name, base_scene.wear.has_value(), bool(base_scene.life), base_scene.plots,
+                   *out);
   const DeferredStopSignals hold;
   out->commit();
   for (const fs::path& k : killed) {

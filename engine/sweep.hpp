@@ -35,6 +35,11 @@ struct SweepOutcome {
 nlohmann::json to_json(const SweepOutcome& o);
 SweepOutcome outcome_from_json(const nlohmann::json& j);
 
+// A run's status in sweep.csv and sweep.json, in the words of its summary.json: 0 "completed", 3 "not_converged";
+// a variant refused while solving (2, a worn contact grown to the window's end) and an internal error (1), which
+// write no summary, "refused" and "internal_error".
+std::string status_word(int status);
+
 struct SweepRun {
   std::vector<nlohmann::json> values;  // one per variation
   std::string name;                    // the run's scene name (its output folder)
@@ -80,7 +85,8 @@ struct SweepOptions {
 };
 
 // Validates every variant before running any (all problems at once, SceneError); then runs the runs not kept, each
-// into <dir>/runs/<name>/, and writes <dir>/sweep.csv, <dir>/sweep.json and, with plots, the maps (sweep_plots.hpp).
+// into <dir>/runs/<name>/, and writes <dir>/sweep.csv, <dir>/sweep.json, the maps' data and, with plots, the maps
+// (sweep_plots.hpp). A run that fails writes no folder: its row says why (status and message).
 SweepResult run_sweep(const std::filesystem::path& scene_file, const std::vector<Variation>& variations,
                       const SweepOptions& options);
 inline SweepResult run_sweep(const std::filesystem::path& scene_file, const std::vector<Variation>& variations,

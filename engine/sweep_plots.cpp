@@ -158,7 +158,7 @@ std::string column_name(const std::string& key) {
   return u.suffix.empty() ? key : key + "_" + u.suffix;
 }
 
-void write_sweep_maps(const SweepResult& result, const std::string& scene_name, bool wears, bool life,
+void write_sweep_maps(const SweepResult& result, const std::string& scene_name, bool wears, bool life, bool plots,
                       const OutputFolder& out) {
   const auto& variations = result.variations;
   if (variations.empty()) return;
@@ -188,6 +188,18 @@ void write_sweep_maps(const SweepResult& result, const std::string& scene_name, 
     if (i + 1 == n0) dat += "\n";
   }
   out.write("sweep_map.dat", dat);
+  if (life) {  // the life against the first varied key, a row per run (NaN where it failed or never fails)
+    std::string lives;
+    for (std::size_t k = 0; k < result.runs.size(); ++k) {
+      const SweepRun& run = result.runs[k];
+      const json total = run.status == 0 ? value_at(run.summary, "life.total_cycles") : json(nullptr);
+      const json init = run.status == 0 ? value_at(run.summary, "life.initiation.cycles") : json(nullptr);
+      lives += fmt::format("{} {} {}\n", number(x.at[k % n0]), total.is_number() ? number(total.get<double>()) : "NaN",
+                           init.is_number() ? number(init.get<double>()) : "NaN");
+    }
+    out.write("sweep_life.dat", lives);
+  }
+  if (!plots) return;
 
   std::string gp = "# The sweep's maps. Re-run with: gnuplot sweep.gp\n"
                    "# sweep_map.dat, a row per run: x y value x_lo x_hi y_lo y_hi regime_rgb regime (the cell of a run\n"
@@ -222,15 +234,6 @@ void write_sweep_maps(const SweepResult& result, const std::string& scene_name, 
   }
 
   if (life) {  // the life against the first varied key (a run that never fails is left out)
-    std::string lives;
-    for (std::size_t k = 0; k < result.runs.size(); ++k) {
-      const SweepRun& run = result.runs[k];
-      const json total = run.status == 0 ? value_at(run.summary, "life.total_cycles") : json(nullptr);
-      const json init = run.status == 0 ? value_at(run.summary, "life.initiation.cycles") : json(nullptr);
-      lives += fmt::format("{} {} {}\n", number(x.at[k % n0]), total.is_number() ? number(total.get<double>()) : "NaN",
-                           init.is_number() ? number(init.get<double>()) : "NaN");
-    }
-    out.write("sweep_life.dat", lives);
     gp += fmt::format("reset\nset grid\nset logscale y\nset format y '10^{{%T}}'\nset title \"{}: life "
                       "(runs that never fail are left out)\" noenhanced\n",
                       scene_name);

@@ -23,8 +23,10 @@ std::string axis_label(const std::string& dotted);
 // "load.P_N_m": a varied key as sweep.csv names its column.
 std::string column_name(const std::string& dotted);
 
-// Writes sweep_map.dat, sweep_life.dat (with a life effect) and sweep.gp into `out`, and runs gnuplot on it.
-void write_sweep_maps(const SweepResult& result, const std::string& scene_name, bool wears, bool life,
+// Writes the maps' data into `out`, whatever `plots`: sweep_map.dat (a row per cell of the first two varied keys)
+// and, with a life effect, sweep_life.dat, as the runs' CSV files are written without plots; with `plots` also
+// sweep.gp, and runs gnuplot on it (sweep_regime, sweep_map, sweep_life .svg/.png).
+void write_sweep_maps(const SweepResult& result, const std::string& scene_name, bool wears, bool life, bool plots,
                       const OutputFolder& out);
 
 }  // namespace fretwear

@@ -199,7 +199,7 @@ Result run(py::handle scene_arg, py::handle output_arg) {
       if (output) {
         OutputFolder out(scene.output_dir, OutputCommand::run);
         const DeferredStopSignals hold;
-        out.write_json("summary.json", not_converged_summary(scene, failure));
+        out.write_json("summary.json", not_converged_summary(scene, e, checked.warnings));
         out.commit();
       }
     } catch (const InputError& e) {  // found while solving: a worn contact grown to the window's end
@@ -342,7 +342,8 @@ complete default scene. Errors: SceneError (with .problems), ConvergenceError. U
 
   py::class_<Table>(m, "Table", R"doc(One CSV file's fields as numpy arrays: table.x, table["x"]; the same rows and
 columns as the file, each column named by its header without the unit ("p_Pa" is p) and in that unit (SI; the
-critical plane's angle in degrees). An empty CSV value is NaN. print(table) lists the columns with their units;
+critical plane's angle in degrees). An empty CSV value is NaN. The arrays are read-only (every access hands out
+the same one): table.x.copy() gives an array to change. print(table) lists the columns with their units;
 table.units maps each to its unit; pandas.DataFrame(table.to_dict()) makes a data frame.)doc")
       .def("__getattr__",
            [](const Table& t, const std::string& name) -> py::object {

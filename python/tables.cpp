@@ -14,6 +14,18 @@ namespace py = pybind11;
 
 namespace fretwear::python {
 
+namespace {
+
+// A column's array as the table hands it out: read-only for good, over an immutable bytes object (numpy refuses to
+// set its WRITEABLE flag again), so that table.x, table["x"] and to_dict() can hand out the one array without one
+// caller changing another's data; array.copy() gives a writeable array of the caller's own.
+py::object frozen(const py::array& values) {
+  return py::module_::import("numpy").attr("frombuffer")(values.attr("tobytes")(),
+                                                          py::arg("dtype") = values.attr("dtype"));
+}
+
+}  // namespace
+
 void Table::check_rows(std::size_t n) {
   if (columns_.empty()) rows_ = n;
   if (n != rows_) throw std::logic_error(fmt::format("{}: a column of {} rows in a table of {}", file_, n, rows_));
@@ -22,7 +34,7 @@ void Table::check_rows(std::size_t n) {
 void Table::add(std::string name, std::string unit, std::string meaning, const std::vector<double>& values) {
   check_rows(values.size());
   columns_.push_back({std::move(name), std::move(unit), std::move(meaning),
-                      py::array_t<double>(py::ssize_t(values.size()), values.data())});
+                      frozen(py::array_t<double>(py::ssize_t(values.size()), values.data()))});
 }
 
 void Table::add_labels(std::string name, std::string meaning, const std::vector<std::string>& values) {
@@ -30,13 +42,13 @@ void Table::add_labels(std::string name, std::string meaning, const std::vector<
   py::list list;
   for (const auto& v : values) list.append(py::str(v));
   columns_.push_back({std::move(name), "", std::move(meaning),
-                      py::module_::import("numpy").attr("array")(list, py::arg("dtype") = "str")});
+                      frozen(py::module_::import("numpy").attr("array")(list, py::arg("dtype") = "str"))});
 }
 
 void Table::add_integers(std::string name, std::string meaning, const std::vector<long>& values) {
   check_rows(values.size());
   columns_.push_back({std::move(name), "1", std::move(meaning),
-                      py::array_t<long>(py::ssize_t(values.size()), values.data())});
+                      frozen(py::array_t<long>(py::ssize_t(values.size()), values.data()))});
 }
 
 const Column& Table::column(const std::string& name) const {

@@ -1,6 +1,7 @@
 // A run's fields as numpy arrays: one Table per CSV file the command line writes, one column per CSV column, in the
 // same rows and the same order, in the CSV's units (SI; angles in degrees where the CSV gives degrees). The column's
-// name is the CSV header's without its unit suffix ("p_Pa" is `p`); a value the CSV leaves empty is NaN.
+// name is the CSV header's without its unit suffix ("p_Pa" is `p`); a value the CSV leaves empty is NaN. The arrays
+// are read-only: each is handed out to every caller (table.x is table["x"]), and `.copy()` gives one to write into.
 #pragma once
 
 #include <map>
@@ -18,7 +19,7 @@ struct Column {
   std::string name;     // the CSV header's, without the unit: "p"
   std::string unit;     // "Pa", "m", "1" for a pure number, "" for a label
   std::string meaning;  // one line
-  pybind11::object values;  // a 1-D numpy array
+  pybind11::object values;  // a 1-D numpy array, read-only (its WRITEABLE flag cannot be set)
 };
 
 class Table {

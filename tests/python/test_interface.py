@@ -112,6 +112,7 @@ def test_a_solve_stopped_short_raises_convergence_error_with_its_residual(in_emp
         fretwear.run(scene, output=str(in_empty_folder / "out"))
     summary = json.loads((in_empty_folder / "out" / "summary.json").read_text())
     assert summary["status"] == "not_converged" and "residual" in summary["message"]
+    assert summary["failed_stage"] == "normal" and summary["effects_run"] == []  # as the command line writes it
     monkeypatch.delenv("FRETWEAR_NORMAL_MAX_ITERATIONS")
     assert fretwear.run(scene).summary["contact"]["cells_in_contact"] > 0
 

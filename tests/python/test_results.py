@@ -63,6 +63,26 @@ def test_every_csv_file_is_a_table_with_its_columns_and_values(both):
                                               err_msg=f"{table.file}: {name}")
 
 
+def test_every_array_is_read_only_and_a_copy_is_the_callers_own(both):
+    # table.x, table["x"] and to_dict() hand out one array: read-only, so that no caller changes another's data, and
+    # for good (its WRITEABLE flag cannot be set again); .copy() is writeable and leaves the table's as it was.
+    result, _ = both
+    for table in result.tables.values():
+        for name in table.columns:
+            column = table[name]
+            assert column is getattr(table, name) is table.to_dict()[name], (table.file, name)
+            assert not column.flags.writeable, (table.file, name)
+            with pytest.raises(ValueError, match="read-only"):
+                column[...] = column[::-1]
+            with pytest.raises(ValueError):
+                column.flags.writeable = True
+            before = column.copy()
+            mine = column.copy()
+            assert mine.flags.writeable
+            mine[...] = mine[::-1]
+            assert table[name].tobytes() == before.tobytes(), (table.file, name)
+
+
 def test_the_resolved_scene_is_the_command_lines(both):
     result, folder = both
     written = json.loads((folder / "scene.resolved.json").read_text())

@@ -135,7 +135,7 @@ TEST_CASE("validate writes nothing, defaults prints a valid scene, --version, an
 TEST_CASE("convergence writes its table into the convergence subfolder of output.dir") {
   Scratch s;
   s.write("s.json", kGood);
-  const Outcome r = s.fretwear({"convergence", "s.json", "--from", "128", "--to", "512", "-q"});
+  const Outcome r = s.fretwear({"convergence", "s.json", "--from", "128", "--to", "512"});
   REQUIRE_MESSAGE(r.exited(kDone), r.describe());
   CHECK(r.all().find("errors against hertz") != std::string::npos);
   std::ifstream csv(s.work / "output" / "cli" / "convergence" / "convergence.csv");
@@ -143,6 +143,15 @@ TEST_CASE("convergence writes its table into the convergence subfolder of output
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   CHECK(rows == 4);  // header and 128, 256, 512
+}
+
+TEST_CASE("convergence with -q prints nothing, and writes its table") {
+  Scratch s;
+  s.write("s.json", kGood);
+  const Outcome r = s.fretwear({"convergence", "s.json", "--from", "128", "--to", "256", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  CHECK(r.all().empty());
+  CHECK(std::filesystem::exists(s.work / "output" / "cli" / "convergence" / "convergence.csv"));
 }
 
 TEST_CASE("convergence refuses a range of grids that holds none, with the earlier results kept") {

@@ -1,5 +1,6 @@
 // `fretwear sweep` on the command line: the runs, the table, the exit status. What a sweep computes is checked in
 // process by tests/unit/test_sweep.cpp.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -70,6 +71,18 @@ TEST_CASE("a sweep of a scene with a life effect tabulates the lives and draws t
   CHECK(row.find("failure") != std::string::npos);
   if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
     CHECK(fs::exists(s.work / "out" / "sweep" / "sweep_life.png"));
+
+  // Without plots the lives' data is written all the same, a row per run; only the script and the images are not.
+  json quiet = scene;
+  quiet["output"] = {{"dir", (s.work / "unplotted").string()}, {"plots", false}};
+  s.write("unplotted.json", quiet.dump());
+  REQUIRE(s.fretwear({"sweep", "unplotted.json", "--vary", "load.Q.ratio=0.5,0.7", "-q"}).exited(kDone));
+  const fs::path unplotted = s.work / "unplotted" / "sweep";
+  const std::string lives = read_file(unplotted / "sweep_life.dat");
+  CHECK(std::count(lives.begin(), lives.end(), '\n') == 2);
+  CHECK(fs::exists(unplotted / "sweep_map.dat"));
+  CHECK_FALSE(fs::exists(unplotted / "sweep.gp"));
+  CHECK_FALSE(fs::exists(unplotted / "sweep_life.png"));
 }
 
 TEST_CASE("a 3 x 3 sweep draws 3 x 3 cells that tile the plane, a regime map with units, and names units in sweep.csv") {
@@ -279,4 +292,33 @@ TEST_CASE("each run's scene.resolved.json names the run's own folder as output.d
     const json resolved = json::parse(read_file(folder / "scene.resolved.json"));
     CHECK(resolved["output"]["dir"] == folder.generic_string());
   }
+}
+
+TEST_CASE("a run that does not converge: sweep.csv's status and message are those of fretwear run's summary.json") {
+  // The test hook FRETWEAR_NORMAL_MAX_ITERATIONS=6 stops the normal solve on 4096 cells short (it converges from a
+  // cap of 10), not on 64 (from 4). The failed run writes no folder; its row says what `fretwear run` of its variant
+  // writes.
+  Scratch s;
+  const Env cap = {{"FRETWEAR_NORMAL_MAX_ITERATIONS", "6"}};
+  const std::string scene = write_scene(s).string();
+  const Outcome sweep = s.fretwear({"sweep", scene, "--vary", "grid.cells=64,4096", "-q"}, cap);
+  CHECK_MESSAGE(sweep.exited(kNotConverged), sweep.describe());
+  const auto rows = csv_rows(s.work / "out" / "sweep" / "sweep.csv", "timings.total_s");
+  REQUIRE(rows.size() == 3);
+  REQUIRE(rows[0][1] == "status");
+  REQUIRE(rows[0].back() == "message");
+  const json completed = json::parse(read_file(s.work / "out" / "sweep" / "runs" / rows[1][2] / "summary.json"));
+  CHECK(rows[1][1] == completed["status"]);
+  CHECK(rows[1].back().empty());
+  CHECK_FALSE(fs::exists(s.work / "out" / "sweep" / "runs" / rows[2][2]));
+
+  json variant = json::parse(read_file(scene));
+  variant["grid"]["cells"] = 4096;
+  variant["output"]["dir"] = (s.work / "alone").string();
+  s.write("alone.json", variant.dump());
+  const Outcome alone = s.fretwear({"run", "alone.json", "-q"}, cap);
+  REQUIRE_MESSAGE(alone.exited(kNotConverged), alone.describe());
+  const json summary = json::parse(read_file(s.work / "alone" / "summary.json"));
+  CHECK(rows[2][1] == summary["status"]);
+  CHECK(rows[2].back() == summary["message"]);
 }

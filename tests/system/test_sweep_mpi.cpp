@@ -68,7 +68,8 @@ TEST_CASE("mpirun -n 2 fretwear sweep: both ranks run runs, and sweep.csv equals
   CHECK(rows.size() == 13);
   CHECK(rows == csv_rows(s.work / "one" / "sweep" / "sweep.csv", "timings.total_s"));
   for (const auto& row : rows)
-    if (row.size() > 3 && row[2] == "0") CHECK(fs::exists(s.work / "mpi" / "sweep" / "runs" / row[3] / "summary.json"));
+    if (row.size() > 3 && row[2] == "completed")
+      CHECK(fs::exists(s.work / "mpi" / "sweep" / "runs" / row[3] / "summary.json"));
 }
 
 TEST_CASE("a sweep killed under mpirun is finished by --resume under mpirun, its table as if never stopped") {
@@ -92,7 +93,7 @@ TEST_CASE("an invalid sweep under mpirun exits 2, said once, nothing written") {
   s.write("mpi.json", sweep_scene(s.work / "mpi").dump());
   const MpiOutcome bad = mpirun(s.work, 2, {"sweep", "mpi.json", "--vary", "load.P=1e5,-1", "-q"});
   CHECK_MESSAGE(bad.status == kInvalid, bad.err);
-  const auto first = bad.err.find("load.P"), second = bad.err.find("sw__load.P_-1", bad.err.find("sw__load.P_-1") + 1);
+  const auto first = bad.err.find("load.P"), second = bad.err.find("sw__load.P_-1.0", bad.err.find("sw__load.P_-1.0") + 1);
   CHECK(first != std::string::npos);
   CHECK_MESSAGE(second == std::string::npos, bad.err);
   CHECK_FALSE(fs::exists(s.work / "mpi"));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -423,6 +424,12 @@ std::string cycle_by_cycle_problem(double stability_limit) {
                      stability_limit);
 }
 
+namespace {
+// The warm cycle solves the estimate times, and the time after which it stops timing more (s).
+constexpr int kEstimateSolves = 5;
+constexpr double kEstimateSeconds = 1.0;
+}  // namespace
+
 WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleStage& cycle) {
   const WearEffect& effect = *scene.wear;
   const wear::WearLaw law{effect.law, effect.coefficient, *scene.friction,
@@ -431,10 +438,19 @@ WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleSt
   const std::vector<double> w(model.grid.n, 0.0);
   wear::CycleResponse response;
   contact->respond(w, response);  // cold: the first cycle's solves start from nothing
-  const auto t0 = std::chrono::steady_clock::now();
-  contact->respond(w, response);  // warm-started, as the run's are
+  // Warm-started, as the run's are: the least of up to kEstimateSolves timings (within kEstimateSeconds), which
+  // a busy machine disturbs far less than one timing, so that `validate` and `run` give the same verdict but within
+  // a few per cent of the limit.
   WearEstimate e;
-  e.seconds_per_response = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  e.seconds_per_response = std::numeric_limits<double>::infinity();
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < kEstimateSolves; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    contact->respond(w, response);
+    const auto t1 = std::chrono::steady_clock::now();
+    e.seconds_per_response = std::min(e.seconds_per_response, std::chrono::duration<double>(t1 - t0).count());
+    if (std::chrono::duration<double>(t1 - start).count() > kEstimateSeconds) break;
+  }
   // FRETWEAR_CYCLE_SOLVE_SECONDS (tests only): the time of a cycle response, so that a test of the estimate's
   // verdicts does not depend on the speed of the machine (or of a sanitizer build).
   if (const char* fixed = std::getenv("FRETWEAR_CYCLE_SOLVE_SECONDS")) e.seconds_per_response = std::atof(fixed);

@@ -170,7 +170,7 @@ inline constexpr double kExplicitCapFraction = 0.9;
 // steady cycle each) the stepper will take. The implicit stepper takes a few hundred whatever the cycle count and is
 // not estimated (responses 0). Throws what run_wear would throw at its first cycle.
 struct WearEstimate {
-  double seconds_per_response = 0.0;  // wall time of one warm-started cycle response (s)
+  double seconds_per_response = 0.0;  // wall time of a warm-started cycle response, the least of a few (s)
   double stability_limit = 0.0;       // 1.5 Δx/(E* c s_max) (cycles); 0 when nothing slips
   double responses = 0.0;             // cycle responses the run will take (at least)
   double area_rate = 0.0;             // the worn area per cycle at the first cycle, c ∫ p s dx (m²/cycle)

@@ -270,14 +270,17 @@ bool same_run(json resolved, json wanted) {
 }
 
 // The summary of a complete run folder of `scene` (written whole by its own staging and commit: a folder under its
-// final name has every file), or null when the folder is missing, partial or of another scene.
+// final name has every file), or null when the folder is missing, partial, of another scene, or of a run that did
+// not complete (a not-converged summary also holds the normal contact's sections).
 json complete_summary(const fs::path& folder, const Scene& scene) {
   std::error_code ec;
   if (!fs::is_regular_file(folder / "summary.json", ec) || !fs::is_regular_file(folder / "scene.resolved.json", ec))
     return nullptr;
   std::ifstream summary_file(folder / "summary.json"), scene_file(folder / "scene.resolved.json");
   const json summary = json::parse(summary_file, nullptr, false), resolved = json::parse(scene_file, nullptr, false);
-  if (!summary.is_object() || !summary.contains("contact") || !resolved.is_object()) return nullptr;
+  if (!summary.is_object() || summary.value("status", "") != "completed" || !summary.contains("contact") ||
+      !resolved.is_object())
+    return nullptr;
   if (!same_run(resolved, scene.to_json())) return nullptr;
   return summary;
 }

@@ -207,3 +207,22 @@ TEST_CASE("a number names its run folder alike however it is written, and --resu
     CHECK(fs::exists(scratch.path / "out" / "sweep" / "runs" / run.name / "summary.json"));
   }
 }
+
+TEST_CASE("--resume runs again a run whose folder holds a summary that did not complete") {
+  // A not-converged summary holds the normal contact's sections too (docs/OUTPUTS.md): only "completed" is kept.
+  Scratch scratch;
+  const fs::path scene = write_scene(scratch.path);
+  const SweepResult first = run_sweep(scene, {parse_variation("load.Q.ratio=0.3,0.6")}, 1, nullptr);
+  REQUIRE(first.runs.size() == 2);
+  const fs::path failed = scratch.path / "out" / "sweep" / "runs" / first.runs[1].name / "summary.json";
+  json summary = read_json(failed);
+  summary["status"] = "not_converged";
+  std::ofstream(failed) << summary.dump();
+  SweepOptions again;
+  again.resume = true;
+  const SweepResult second = run_sweep(scene, {parse_variation("load.Q.ratio=0.3,0.6")}, again);
+  REQUIRE(second.runs.size() == 2);
+  CHECK(second.runs[0].kept);
+  CHECK_FALSE(second.runs[1].kept);
+  CHECK(read_json(failed)["status"] == "completed");
+}

@@ -169,6 +169,11 @@ class FaceContact {
   // The set the contact's linear complementarity problem gives (header), the starting set of a settle() that has
   // met a cycle; false if the pivoting found no solution.
   bool complementary_set();
+  // Passes from the complementarity problem's set again: without friction with its closed points sliding the way
+  // the faces do, then also with the points it was not posed on (the mouth's, whose own compliance is not positive)
+  // held in the state it gave them and their inequalities left unchecked. False if it was not solved or neither
+  // settles.
+  bool settle_again(int max_passes);
   // A cycle's least violating set and its solution, if its violation is below kCycleTolerance of the load.
   bool keep_cycle_best(double load);
 
@@ -202,6 +207,10 @@ class FaceContact {
   // Every violated inequality, by how much (Pa), and in next the state that removes it.
   std::vector<std::pair<double, Eigen::Index>> violations(std::vector<int>& next) const;
   std::optional<Pass> cycle_best_;  // the least violating set of the cycles met
+  std::vector<int> complementary_state_;  // the complementarity problem's set
+  std::vector<int> signed_state_;         // the same, frictionless closed points sliding the way the faces do
+  std::vector<Eigen::Index> mouth_;       // the points it was not posed on
+  bool mouth_held_ = false;               // settle() leaves mouth_'s inequalities unchecked
 
   const Eigen::MatrixXd& M_;
   const Eigen::MatrixXd& Q_;
@@ -263,10 +272,10 @@ bool FaceContact::complementary_set() {
   const Eigen::MatrixXd Hp = -(Q_ * Minv.bottomLeftCorner(N_, N_)), Ht = Q_ * Minv.bottomRightCorner(N_, N_);
   // The problem is posed on the points whose own compliance G_p,kk is positive: an inclined crack's last two or three
   // points at the mouth, a corner the polynomial density does not resolve (header), close further under their own
-  // pressure, where no pivoting method can be relied on; the passes that follow settle them.
+  // pressure, where no pivoting method can be relied on; the passes that follow settle them, or hold them.
   std::vector<Eigen::Index> J;
   for (Eigen::Index k = 0; k < N_; ++k)
-    if (Gp(k, k) > 0.0) J.push_back(k);
+    (Gp(k, k) > 0.0 ? J : mouth_).push_back(k);
   const Eigen::Index m = Eigen::Index(J.size());
   Eigen::VectorXd p = Eigen::VectorXd::Zero(N_), T = Eigen::VectorXd::Zero(N_), slip = Eigen::VectorXd::Zero(N_);
   std::optional<LcpSolution> s;
@@ -289,17 +298,41 @@ bool FaceContact::complementary_set() {
     s = solve_lcp(A, q, kMaxPivots * int(4 * m));
     if (s) p(J) = s->z.head(m), T(J) = s->z.segment(2 * m, m) - s->z.segment(m, m), slip(J) = s->z.tail(m);
   }
+  // Friction makes the problem's matrix lose the properties that guarantee Lemke's path (it may end on a ray); the
+  // frictionless problem's contact set is then the start, its points closing the way the faces slide.
+  bool frictionless = f_ == 0.0;
+  if (!s && f_ > 0.0) {
+    s = solve_lcp(Gp(J, J), g0(J), kMaxPivots * int(m));
+    if (s) p(J) = s->z, frictionless = true;
+  }
   complementarity = s ? 1 : -1;
   if (!s) return false;
+  // The set: without friction, a closed point first as slipping one way (its shear is zero either way), and in
+  // signed_state_ the way the faces slide there, as closing() takes it.
   const Eigen::VectorXd gap = g0 + Gp * p + Gt * T, h_all = h0 + Hp * p + Ht * T;
+  signed_state_ = state;
   for (Eigen::Index k = 0; k < N_; ++k) {
     if (p(k) > tol_) {
-      state[k] = f_ == 0.0 ? 2 : slip(k) > tol_ ? (T(k) > 0.0 ? 2 : -2) : 1;
+      state[k] = f_ == 0.0 ? 2 : frictionless ? closing(h_all(k)) : slip(k) > tol_ ? (T(k) > 0.0 ? 2 : -2) : 1;
+      signed_state_[k] = frictionless ? closing(h_all(k)) : state[k];
     } else {
-      state[k] = gap(k) < -tol_ ? closing(h_all(k)) : 0;
+      state[k] = signed_state_[k] = gap(k) < -tol_ ? closing(h_all(k)) : 0;
     }
   }
+  complementary_state_ = state;
   return true;
+}
+
+bool FaceContact::settle_again(int max_passes) {
+  if (complementarity <= 0) return false;
+  if (signed_state_ != complementary_state_) {
+    state = signed_state_;
+    if (settle(max_passes)) return true;
+  }
+  if (mouth_.empty()) return false;
+  state = signed_state_;
+  mouth_held_ = true;
+  return settle(max_passes);
 }
 
 bool FaceContact::keep_cycle_best(double load) {
@@ -345,6 +378,7 @@ void FaceContact::take(const Eigen::VectorXd& density) {
 std::vector<std::pair<double, Eigen::Index>> FaceContact::violations(std::vector<int>& next) const {
   std::vector<std::pair<double, Eigen::Index>> violated;
   for (Eigen::Index k = 0; k < N_; ++k) {
+    if (mouth_held_ && std::find(mouth_.begin(), mouth_.end(), k) != mouth_.end()) continue;
     const double p = -Tn(k);
     double by = 0.0;
     if (state[k] == 0) {
@@ -384,12 +418,14 @@ CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std
   r.K_II_open = scale * L.dot(c.phi.tail(N));
   if (c.close_overlaps(r.K_I_open)) {
     // The passes from the overlaps' set settle most contacts; where they cycle or run out, they start again from the
-    // set of the complementarity problem (exact where the problem has a solution on these points), and only if that
-    // does not settle either is a cycle's nearly satisfied set kept.
+    // set of the complementarity problem (exact where the problem has a solution on these points); then a cycle's
+    // nearly satisfied set is kept, and only where there is none do the passes start from the complementarity set
+    // again (settle_again).
     bool settled = c.settle(options_.max_contact_iterations);
     if (!settled && c.complementary_set())
       settled = c.settle(std::max(1, options_.max_contact_iterations - c.passes));
     if (!settled) settled = c.keep_cycle_best(load);
+    if (!settled) settled = c.settle_again(std::max(1, options_.max_contact_iterations - c.passes));
     r.contact_iterations = c.passes;
     if (!settled)
       throw ConvergenceError(fmt::format(

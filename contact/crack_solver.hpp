@@ -67,9 +67,13 @@
 // Trinkle 1996, in two dimensions; (p, g) alone without friction), solved by Lemke's pivoting
 // (contact/complementarity.hpp). It is posed on the points whose own compliance G_p,kk is positive; an inclined
 // crack's last two or three points at the mouth, a corner the density's polynomial does not resolve, have none, and
-// the passes settle them. Only if these passes also cycle is the least violating set of the cycles kept, if its
-// violation (an overlap or a tension, in the units of the load) is below 1e-3 of the largest load on the line, and
-// ConvergenceError is thrown otherwise. Each phase of the cycle is solved on its own as loaded proportionally from the uncracked, unloaded
+// the passes settle them. Where friction makes Lemke's path end on a ray, the frictionless problem's contact set is
+// the start. If these passes cycle too, the least violating set of the cycles met is kept if its violation (an
+// overlap or a tension, in the units of the load) is below 1e-3 of the largest load on the line; otherwise the
+// passes start from the complementarity set again, without friction with each closed point sliding the way the
+// faces do (first they slip one way: the shear is zero either way), then with the mouth's points held in the state
+// it gave them and their inequalities unchecked (they lie within (1 + t_{N−2})/2 < 0.5 % of l of the mouth), and
+// ConvergenceError is thrown if that does not settle either. Each phase of the cycle is solved on its own as loaded proportionally from the uncracked, unloaded
 // state: under proportional load the contact and stick zones are fixed, so that one solve is the monotonic history's
 // end; the unloading and reloading history within the cycle (reversed slip, locked-in shear) is not modelled. With
 // f = 0 at 90° the modes stay uncoupled and K_II is that of the open crack.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 namespace fretwear::test {
 
@@ -54,6 +55,37 @@ inline CapturedSolve read_captured_solve(const std::string& name, int cells) {
   REQUIRE(int(c.gap.size()) == cells);
   REQUIRE((c.shift.empty() || int(c.shift.size()) == cells));
   return c;
+}
+
+// `got` equals `want` (two summaries, or parts of them) in every value but wall time (timings, seconds,
+// fatigue_seconds, brief): the same keys, numbers to the bit; a key of `got` alone is an error unless it is `extra`.
+// Returns how many numbers were compared.
+inline int compare_summaries(const nlohmann::json& got, const nlohmann::json& want, const std::string& at = "",
+                             const std::string& extra = "") {
+  const auto wall_time = [](const std::string& key) {
+    return key == "timings" || key == "seconds" || key == "fatigue_seconds" || key == "brief";
+  };
+  int numbers = 0;
+  if (want.is_object()) {
+    REQUIRE_MESSAGE(got.is_object(), at);
+    for (const auto& [key, value] : want.items()) {
+      if (wall_time(key)) continue;
+      CHECK_MESSAGE(got.contains(key), (at + "." + key + " missing"));
+      if (got.contains(key)) numbers += compare_summaries(got[key], value, at + "." + key, extra);
+    }
+    for (const auto& [key, value] : got.items())
+      CHECK_MESSAGE((want.contains(key) || key == extra), (at + "." + key + " extra"));
+  } else if (want.is_array()) {
+    REQUIRE_MESSAGE(got.size() == want.size(), at);
+    for (std::size_t i = 0; i < want.size(); ++i)
+      numbers += compare_summaries(got[i], want[i], at + "[" + std::to_string(i) + "]", extra);
+  } else if (want.is_number() && got.is_number()) {
+    CHECK_MESSAGE(got.get<double>() == want.get<double>(), at);
+    ++numbers;
+  } else {
+    CHECK_MESSAGE(got == want, at);
+  }
+  return numbers;
 }
 
 }  // namespace fretwear::test

@@ -14,40 +14,12 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include "support.hpp"
 #include "system/program.hpp"
 
 using namespace fretwear::system_test;
 
 namespace {
-
-// Keys of wall time, which differ from run to run.
-bool wall_time(const std::string& key) {
-  return key == "timings" || key == "seconds" || key == "fatigue_seconds" || key == "brief";
-}
-
-// `got` equals `want` in every value but wall time: the same keys, numbers to the bit. Returns how many numbers were
-// compared.
-int compare(const json& got, const json& want, const std::string& at) {
-  int numbers = 0;
-  if (want.is_object()) {
-    REQUIRE_MESSAGE(got.is_object(), at);
-    for (const auto& [key, value] : want.items()) {
-      if (wall_time(key)) continue;
-      CHECK_MESSAGE(got.contains(key), (at + "." + key + " missing"));
-      if (got.contains(key)) numbers += compare(got[key], value, at + "." + key);
-    }
-    for (const auto& [key, value] : got.items()) CHECK_MESSAGE(want.contains(key), (at + "." + key + " extra"));
-  } else if (want.is_array()) {
-    REQUIRE_MESSAGE(got.size() == want.size(), at);
-    for (std::size_t i = 0; i < want.size(); ++i) numbers += compare(got[i], want[i], at + "[" + std::to_string(i) + "]");
-  } else if (want.is_number() && got.is_number()) {
-    CHECK_MESSAGE(got.get<double>() == want.get<double>(), at);
-    ++numbers;
-  } else {
-    CHECK_MESSAGE(got == want, at);
-  }
-  return numbers;
-}
 
 // The files of a folder, by name.
 std::vector<std::string> files_in(const fs::path& dir) {
@@ -114,7 +86,7 @@ TEST_CASE("a solve that fails in the crack stage keeps the contact, cycle, wear 
     CAPTURE(section);
     REQUIRE(runs.completed.contains(section));
     REQUIRE(failed.contains(section));
-    numbers += compare(failed[section], runs.completed[section], section);
+    numbers += fretwear::test::compare_summaries(failed[section], runs.completed[section], section);
   }
   CHECK(numbers > 100);  // the records of the wear and the stress maxima of every state among them
   // The warnings of the stages that completed (the crack's own are not reached).
@@ -134,7 +106,7 @@ TEST_CASE("a solve that fails in the load cycle keeps the normal contact and its
   CHECK_FALSE(failed.contains("cycle"));
   for (const char* section : {"contact", "materials", "grid", "solver"}) {
     CAPTURE(section);
-    compare(failed[section], runs.completed[section], section);
+    fretwear::test::compare_summaries(failed[section], runs.completed[section], section);
   }
   // The cycle's own warnings (the slip and stick zones, the Mindlin stick zone missed) are not reached.
   CHECK(failed["warnings"] ==

@@ -17,6 +17,7 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include "support.hpp"
 #include "system/program.hpp"
 
 using namespace fretwear::system_test;
@@ -43,31 +44,6 @@ std::string scene(const std::string& k = "1e-12", const std::string& cycles = "1
     "grid": {"cells": 256}, "effects": {"wear": {"k": )" +
          k + R"(, "cycles": )" + cycles + R"(, "record": 8, "stepper": ")" + stepper +
          R"("}}, "output": {"dir": "out/resume", "plots": false}})";
-}
-
-// Every value of `want` other than timings (and the resumed run's own note) agrees with `got` exactly, numbers to the
-// bit. Returns how many numbers were compared.
-int compare(const json& got, const json& want, const std::string& at = "") {
-  int numbers = 0;
-  if (want.is_object()) {
-    CHECK_MESSAGE(got.is_object(), at);
-    for (const auto& [key, value] : want.items()) {
-      if (key == "timings" || key == "seconds" || key == "brief") continue;  // wall time
-      CHECK_MESSAGE(got.contains(key), (at + "." + key));
-      if (got.contains(key)) numbers += compare(got[key], value, at + "." + key);
-    }
-    for (const auto& [key, value] : got.items())
-      CHECK_MESSAGE((want.contains(key) || key == "resumed_from"), (at + "." + key + " only in the resumed run"));
-  } else if (want.is_array()) {
-    REQUIRE_MESSAGE(got.size() == want.size(), at);
-    for (std::size_t i = 0; i < want.size(); ++i) numbers += compare(got[i], want[i], at + "[" + std::to_string(i) + "]");
-  } else if (want.is_number() && got.is_number()) {
-    CHECK_MESSAGE(got.get<double>() == want.get<double>(), at);
-    ++numbers;
-  } else {
-    CHECK_MESSAGE(got == want, at);
-  }
-  return numbers;
 }
 
 bool partial_left(const fs::path& dir) {
@@ -110,7 +86,7 @@ void check_resumes_to(const Scratch& s, const Whole& whole, std::optional<double
   CHECK(r.all().find("resuming at cycle") != std::string::npos);
   const json resumed = json::parse(read_file(out / "summary.json"));
   if (from) CHECK(resumed["wear"]["resumed_from"].get<double>() == *from);
-  CHECK(compare(resumed, whole.summary) > 40);
+  CHECK(fretwear::test::compare_summaries(resumed, whole.summary, "", "resumed_from") > 40);
   CHECK(read_file(out / "wear_history.csv") == whole.history);
   CHECK(!fs::exists(s.work / "out" / "resume.checkpoint"));
   CHECK(!partial_left(s.work / "out"));

@@ -1,5 +1,5 @@
-// What the command line and the Python module (python/) share beyond Simulation and write_results: the summary of a
-// run that did not converge.
+// What the command line and the Python module (python/) share beyond Simulation and write_results: the summary (and
+// the tables) of a run that did not converge.
 #pragma once
 
 #include <string>
@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.hpp"
+#include "engine/folder.hpp"
 #include "engine/scene.hpp"
 #include "engine/warnings.hpp"
 
@@ -22,6 +23,12 @@ namespace fretwear {
 // that completed.
 nlohmann::json not_converged_summary(const Scene& scene, const ConvergenceError& error,
                                      const std::vector<Warning>& before = {});
+
+// Writes that summary to `out` as summary.json (returned too) and, where the wear stage failed part way, the tables
+// of its records before the failure (wear_history.csv, profiles.csv and, for several stick zones,
+// wear_stick_zones.csv; no plots). The caller commits `out`.
+nlohmann::json write_not_converged(const Scene& scene, const ConvergenceError& error, const std::vector<Warning>& before,
+                                   OutputFolder& out);
 
 // The same from the solver's message alone: `failed_stage` null, no stage's results, no warnings.
 nlohmann::json not_converged_summary(const Scene& scene, const std::string& message);

@@ -277,16 +277,21 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     // Tests only, at each step boundary: FRETWEAR_STEP_PAUSE_MS, a pause, so that a test's signal lands mid-run;
     // FRETWEAR_STOP_AT_STEP=N, SIGINT raised at the first boundary after N accepted steps (a Ctrl-C there, exactly);
     // FRETWEAR_KILL_AT_STEP=N, the end SIGKILL would give there (status 137, nothing written after the checkpoint of
-    // the boundary before).
+    // the boundary before); FRETWEAR_NOT_CONVERGED_AT_STEP=N, the ConvergenceError of a cycle's solve that stopped
+    // short there, so that a test sees what a wear stage that fails part way leaves.
     auto env_int = [](const char* name) {
       const char* v = std::getenv(name);
       return v ? std::atoi(v) : 0;
     };
     const int pause_ms = env_int("FRETWEAR_STEP_PAUSE_MS");
     const int stop_at = env_int("FRETWEAR_STOP_AT_STEP"), kill_at = env_int("FRETWEAR_KILL_AT_STEP");
-    control.stop_requested = [pause_ms, stop_at, kill_at](const WearProgress& p) {
+    const int fail_at = env_int("FRETWEAR_NOT_CONVERGED_AT_STEP");
+    control.stop_requested = [pause_ms, stop_at, kill_at, fail_at](const WearProgress& p) {
       if (pause_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(pause_ms));
       if (kill_at > 0 && p.steps >= kill_at) ::_exit(kExitSignal + SIGKILL);
+      if (fail_at > 0 && p.steps >= fail_at)
+        throw ConvergenceError("a cycle's solve stopped short of its tolerance (FRETWEAR_NOT_CONVERGED_AT_STEP, a "
+                               "test hook)");
       if (stop_at > 0 && p.steps >= stop_at && g_signal == 0) std::raise(SIGINT);
       return g_signal != 0;
     };
@@ -346,7 +351,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     if (const auto* failed = dynamic_cast<const StageNotConverged*>(&e); failed && failed->partial())
       print_warnings(failed->partial()->warnings);
     const DeferredStopSignals hold;
-    out.write_json("summary.json", not_converged_summary(scene, e, checked.warnings));
+    write_not_converged(scene, e, checked.warnings, out);
     out.commit();
     throw;
   } catch (const InputError&) {

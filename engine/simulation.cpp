@@ -51,8 +51,16 @@ RunResult Simulation::run(const WearControl* control) const {
     }
     if (setup.effects.wear) {
       stage = "wear";
-      r.wear = timed(r.timings.wear,
-                     [&] { return run_wear(scene_, model, r.normal, *r.cycle, control ? *control : WearControl{}); });
+      const auto wear_t0 = std::chrono::steady_clock::now();
+      try {
+        r.wear = timed(r.timings.wear, [&] {
+          return run_wear(scene_, model, r.normal, *r.cycle, control ? *control : WearControl{});
+        });
+      } catch (const WearNotConverged& e) {  // its records before the failure, and its time up to it
+        r.wear = e.partial();
+        r.timings.wear = seconds_since(wear_t0);
+        throw;
+      }
     }
     // A wear run stopped on request ends the run there: stress and crack would show a state it did not reach.
     const bool reached = !(r.wear && r.wear->interrupted);
@@ -87,7 +95,7 @@ RunResult Simulation::run(const WearControl* control) const {
     }
   } catch (const ConvergenceError& e) {
     // Each stage's result (and its time) is kept only once the stage completes, when timed() returns it: r holds
-    // those of the stages before `stage`.
+    // those of the stages before `stage`, and of a wear stage that failed part way what it recorded.
     std::shared_ptr<RunResult> partial;
     if (std::string_view(stage) != "normal") {
       r.timings.total = seconds_since(t0);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <memory>
 
@@ -545,9 +546,10 @@ class WearRun {
   // The record of `state` at `cycles`: one response on it.
   void record(const std::vector<double>& state, double cycles);
   // Drives `stepper` from the start, or from control.resume (save/restore carry the stepper's own state, as
-  // engine/checkpoint.hpp's schemas), to the last record or a stop; the stage learns where it stopped.
-  template <class Stepper, class System, class Save, class Restore>
-  DriveState drive(Stepper& stepper, System system, double dN, Save save, Restore restore);
+  // engine/checkpoint.hpp's schemas), to the last record or a stop; the stage learns where it stopped, and
+  // tally(state) puts the stepper's counts in it, also when a solve fails part way (then the error propagates).
+  template <class Stepper, class System, class Save, class Restore, class Tally>
+  DriveState drive(Stepper& stepper, System system, double dN, Save save, Restore restore, Tally tally);
   // At each step boundary: progress, the stop request, a checkpoint when one is due. False: stop.
   template <class Save>
   bool boundary(const DriveState& at, bool recorded, Save& save);
@@ -617,8 +619,8 @@ void WearRun::record(const std::vector<double>& z, double cycles) {
   stage_.records.push_back(std::move(rec));
 }
 
-template <class Stepper, class System, class Save, class Restore>
-DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save, Restore restore) {
+template <class Stepper, class System, class Save, class Restore, class Tally>
+DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save, Restore restore, Tally tally) {
   DriveState s{times_.front(), dN, 0, 0};
   if (control_.resume) {
     const json& j = *control_.resume;
@@ -637,13 +639,18 @@ DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save,
         stepper, system, w_, times_, s, [this](const std::vector<double>& state, double N) { record(state, N); },
         [this, &save](const DriveState& at, bool recorded) { return boundary(at, recorded, save); });
   } catch (const wear::ImplicitSolveFailure&) {
+    stage_.cycles_reached = s.N;
+    tally(s);
     throw;  // it names its cycle, and drive_implicit adds the residual
   } catch (const ConvergenceError& e) {  // a cycle's solve on the worn profile: say where the run was
+    stage_.cycles_reached = s.N;
+    tally(s);
     throw ConvergenceError(fmt::format("{}, in the wear stage at cycle {:.0f} of {:.0f} (step of {:.4g} cycles)",
                                        e.what(), s.N, times_.back(), s.dt));
   }
   stage_.interrupted = !completed;
   stage_.cycles_reached = s.N;
+  tally(s);
   return s;
 }
 
@@ -685,11 +692,13 @@ void WearRun::drive_explicit(double rate_max) {
   const double dN = std::min(stage_.explicit_step_cap, std::max(1.0, effect_.tolerance * depth / rate_max));
   drive(
       stepper, std::ref(rate), dN, [&] { return save_explicit(stepper, rate); },
-      [&](const json& j) { restore_explicit(j, stepper, rate, w_); });
-  stage_.steps = stepper.stats().accepted;
-  stage_.rejected_steps = stepper.stats().rejected;
-  stage_.explicit_max_step = stepper.stats().max_step;
-  stage_.responses = int(rate.evaluations());
+      [&](const json& j) { restore_explicit(j, stepper, rate, w_); },
+      [&](const DriveState&) {
+        stage_.steps = stepper.stats().accepted;
+        stage_.rejected_steps = stepper.stats().rejected;
+        stage_.explicit_max_step = stepper.stats().max_step;
+        stage_.responses = int(rate.evaluations());
+      });
 }
 
 void WearRun::drive_cycle_by_cycle() {
@@ -697,11 +706,13 @@ void WearRun::drive_cycle_by_cycle() {
     throw UnsupportedError(problem);
   wear::WearRateSystem rate(contact_, stage_.rate_coefficient);
   AlwaysAccepted<wear::CycleByCycleStepper> stepper;
-  const DriveState s = drive(
+  drive(
       stepper, std::ref(rate), wear::kCycle, [&] { return save_cycle_by_cycle(rate); },
-      [&](const json& j) { restore_cycle_by_cycle(j, rate); });
-  stage_.steps = int(s.steps);
-  stage_.responses = int(rate.evaluations());
+      [&](const json& j) { restore_cycle_by_cycle(j, rate); },
+      [&](const DriveState& s) {
+        stage_.steps = int(s.steps);
+        stage_.responses = int(rate.evaluations());
+      });
 }
 
 void WearRun::drive_implicit(double rate_max) {
@@ -711,21 +722,31 @@ void WearRun::drive_implicit(double rate_max) {
   try {
     drive(
         stepper, wear::ResponseRef{&contact_}, dN, [&] { return save_implicit(stepper); },
-        [&](const json& j) { restore_implicit(j, stepper); });
+        [&](const json& j) { restore_implicit(j, stepper); },
+        [&](const DriveState&) {
+          stage_.steps = stepper.stats().accepted;
+          stage_.unconverged_steps = stepper.stats().unconverged;
+          stage_.rejected_steps = stepper.stats().rejected;
+          stage_.implicit_solves = stepper.stats().implicit_solves;
+          stage_.responses = stepper.stats().responses;
+        });
   } catch (const wear::ImplicitSolveFailure& e) {
     const SolveSummary& last = contact_.last_unconverged;
     throw ConvergenceError(fmt::format("{} ({}, residual {:.3g})", e.what(), to_string(last.termination),
                                        last.residual));
   }
-  stage_.steps = stepper.stats().accepted;
-  stage_.unconverged_steps = stepper.stats().unconverged;
-  stage_.rejected_steps = stepper.stats().rejected;
-  stage_.implicit_solves = stepper.stats().implicit_solves;
-  stage_.responses = stepper.stats().responses;
 }
 
 void WearRun::drive_frames(double rate_max) {
   BodyFrames& frames = *frames_;
+  // The frames' own counts, whichever stepper drives them.
+  const auto frame_counts = [&] {
+    stage_.implicit_solves = int(frames.solves());
+    stage_.mean_iterations_implicit = double(frames.cg_iterations()) / double(std::max(1L, frames.solves()));
+    stage_.frame_iterations = frames.iterations();
+    stage_.frame_positions = int(frames.positions().shift.size());
+    stage_.frame_directions = frames.directions();
+  };
   if (effect_.stepper == WearStepper::explicit_capped) {
     // As drive_explicit(): the tolerance on the scale of the depth the run wears toward, steps capped below the
     // explicit stability limit of the bodies' coefficients together.
@@ -747,19 +768,25 @@ void WearRun::drive_frames(double rate_max) {
           const int accepted = j.at("accepted").get<int>();
           stepper.restore({accepted, j.at("rejected").get<int>(), j.at("max_step").get<double>()}, w_,
                           accepted > 0 ? &rate.last_rate() : nullptr);
+        },
+        [&](const DriveState&) {
+          stage_.steps = stepper.stats().accepted;
+          stage_.rejected_steps = stepper.stats().rejected;
+          stage_.explicit_max_step = stepper.stats().max_step;
+          stage_.responses = int(rate.evaluations());
+          frame_counts();
         });
-    stage_.steps = stepper.stats().accepted;
-    stage_.rejected_steps = stepper.stats().rejected;
-    stage_.explicit_max_step = stepper.stats().max_step;
-    stage_.responses = int(rate.evaluations());
   } else if (effect_.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(stage_.stability_limit); !problem.empty())
       throw UnsupportedError(problem);
     FramesCycleByCycle stepper;
-    const DriveState s = drive(
-        stepper, std::ref(frames), wear::kCycle, [] { return json::object(); }, [](const json&) {});
-    stage_.steps = int(s.steps);
-    stage_.responses = int(stepper.responses);
+    drive(
+        stepper, std::ref(frames), wear::kCycle, [] { return json::object(); }, [](const json&) {},
+        [&](const DriveState& s) {
+          stage_.steps = int(s.steps);
+          stage_.responses = int(stepper.responses);
+          frame_counts();
+        });
   } else {
     const double dN = std::max(1.0, effect_.tolerance * stage_.asymptote.max_depth / rate_max);
     FramesWearStepper stepper(effect_.tolerance);
@@ -775,17 +802,15 @@ void WearRun::drive_frames(double rate_max) {
           stepper.restore(j);
           frames.count(j.at("solves").get<long>(), j.at("iterations").get<long>(),
                        j.at("cg_iterations").get<long>());
+        },
+        [&](const DriveState&) {
+          stage_.steps = stepper.stats().accepted;
+          stage_.rejected_steps = stepper.stats().rejected;
+          stage_.unconverged_steps = stepper.stats().unconverged;
+          stage_.responses = stepper.stats().responses;
+          frame_counts();
         });
-    stage_.steps = stepper.stats().accepted;
-    stage_.rejected_steps = stepper.stats().rejected;
-    stage_.unconverged_steps = stepper.stats().unconverged;
-    stage_.responses = stepper.stats().responses;
   }
-  stage_.implicit_solves = int(frames.solves());
-  stage_.mean_iterations_implicit = double(frames.cg_iterations()) / double(std::max(1L, frames.solves()));
-  stage_.frame_iterations = frames.iterations();
-  stage_.frame_positions = int(frames.positions().shift.size());
-  stage_.frame_directions = frames.directions();
 }
 
 }  // namespace
@@ -892,6 +917,9 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     for (std::size_t k = 0; k < resumed->at("earlier_records").get<std::size_t>(); ++k)
       stage.records.push_back(record_from(records.at(k)));
   }
+  // A solve that did not converge part way through a block: that block's records so far join the stage's, then the
+  // error propagates.
+  std::exception_ptr failure;
   for (std::size_t b = first; b < scene.blocks.size(); ++b) {
     const double end = start + scene.blocks[b].cycles;
     std::vector<double> times{start};
@@ -935,13 +963,21 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
           [&contact](std::span<const double> state, wear::CycleResponse& out) { contact.respond(state, out); },
           [&contact] { return contact.last_cycle().sliding_amplitude; });
       WearRun run(scene, model, block_control, contact, part, times, z, &progress, &body_frames);
-      run.drive_frames(rate_max);
+      try {
+        run.drive_frames(rate_max);
+      } catch (const ConvergenceError&) {
+        failure = std::current_exception();
+      }
       implicit_solves += body_frames.solves(), implicit_iterations += body_frames.cg_iterations();
       z = run.state();
       w = mid_stroke(z);
     } else {
       WearRun run(scene, model, block_control, contact, part, times, w_start, &progress);
-      drive_by(run, effect.stepper, rate_max);
+      try {
+        drive_by(run, effect.stepper, rate_max);
+      } catch (const ConvergenceError&) {
+        failure = std::current_exception();
+      }
       w = run.state();
       if (!z.empty()) {  // the bodies in their own frames so far: this block's wear split by pad_fraction
         const double pad = effect.pad_fraction;
@@ -974,14 +1010,15 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     if (part.resumed_from) stage.resumed_from = part.resumed_from;
     cycle_solves += contact.cycle_solves, cycle_iterations += contact.cycle_iterations;
     implicit_solves += contact.implicit_solves, implicit_iterations += contact.implicit_iterations;
-    if (part.interrupted) {
-      stage.interrupted = true;
+    if (failure || part.interrupted) {
+      stage.interrupted = part.interrupted;
       break;
     }
     start = end;
   }
   stage.mean_iterations_cycle = double(cycle_iterations) / double(std::max(1L, cycle_solves));
   stage.mean_iterations_implicit = double(implicit_iterations) / double(std::max(1L, implicit_solves));
+  if (failure) std::rethrow_exception(failure);
 }
 
 // Under displacement control, with an asymptote: the limit of the last record's stick zones (WearStage::settled),
@@ -1043,8 +1080,18 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   WearStage stage;
   stage.rate_coefficient = law.rate_coefficient();
   stage.asymptote = wear_asymptote(scene, model, normal);
+  // A solve that fails once records were taken: the stage as far as it got goes with the error.
+  const auto not_converged = [&stage](const ConvergenceError& e) {
+    if (stage.records.empty()) throw;
+    throw WearNotConverged(e.what(), std::make_shared<const WearStage>(std::move(stage)));
+  };
   if (!scene.blocks.empty()) {
-    run_blocks(scene, model, cycle, control, stage);
+    try {
+      run_blocks(scene, model, cycle, control, stage);
+    } catch (const ConvergenceError& e) {
+      scars(model, effect, stage);
+      not_converged(e);
+    }
     scars(model, effect, stage);
     return stage;
   }
@@ -1056,35 +1103,45 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   stage.stability_limit = first.stability_limit;
 
   auto* incremental = dynamic_cast<IncrementalContactResponse*>(contact.get());
-  if (incremental && first.rate_max > 0.0 && bodies_in_own_frames(scene, model, cycle)) {
-    const double c = stage.rate_coefficient, pad = effect.pad_fraction;
-    incremental->give_slip_travelled();  // the frames weigh it by their own pressures
-    BodyFrames frames(
-        model, scene.P, *scene.friction, c * pad, c * (1.0 - pad),
-        [incremental](std::span<const double> w, wear::CycleResponse& out) { incremental->respond(w, out); },
-        [incremental] { return incremental->last_cycle().sliding_amplitude; });
-    WearRun run(scene, model, control, *contact, stage, frames);
-    run.drive_frames(first.rate_max);
-  } else {
-    WearRun run(scene, model, control, *contact, stage);
-    drive_by(run, effect.stepper, first.rate_max);
+  // What the run says of itself once driven, to its end or to a solve that failed part way.
+  const auto tally = [&] {
+    if (incremental && incremental->analogy_responses() > 0) {
+      stage.route = "analogy (displacement control: each cycle's Q solved for load.delta)";
+      if (!incremental->analogy_gave_up().empty())
+        stage.route += fmt::format(", then incremental after {} responses: {}", incremental->analogy_responses(),
+                                   incremental->analogy_gave_up());
+    }
+    if (incremental && incremental->beta() != 0.0) {
+      const long coupled = incremental->coupled_responses(), lagged = incremental->lagged_responses();
+      stage.coupling = WearStage::Coupling{coupled + lagged, coupled, incremental->mirrored_responses(), lagged};
+    }
+    if (first.rate_max == 0.0) return;  // nothing slips: nothing wears
+    scars(model, effect, stage);
+    stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
+    if (stage.frame_positions == 0)  // with frames, drive_frames() counted its own solves
+      stage.mean_iterations_implicit =
+          double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
+  };
+  try {
+    if (incremental && first.rate_max > 0.0 && bodies_in_own_frames(scene, model, cycle)) {
+      const double c = stage.rate_coefficient, pad = effect.pad_fraction;
+      incremental->give_slip_travelled();  // the frames weigh it by their own pressures
+      BodyFrames frames(
+          model, scene.P, *scene.friction, c * pad, c * (1.0 - pad),
+          [incremental](std::span<const double> w, wear::CycleResponse& out) { incremental->respond(w, out); },
+          [incremental] { return incremental->last_cycle().sliding_amplitude; });
+      WearRun run(scene, model, control, *contact, stage, frames);
+      run.drive_frames(first.rate_max);
+    } else {
+      WearRun run(scene, model, control, *contact, stage);
+      drive_by(run, effect.stepper, first.rate_max);
+    }
+  } catch (const ConvergenceError& e) {
+    tally();
+    not_converged(e);
   }
-  if (incremental && incremental->analogy_responses() > 0) {
-    stage.route = "analogy (displacement control: each cycle's Q solved for load.delta)";
-    if (!incremental->analogy_gave_up().empty())
-      stage.route += fmt::format(", then incremental after {} responses: {}", incremental->analogy_responses(),
-                                 incremental->analogy_gave_up());
-  }
-  if (incremental && incremental->beta() != 0.0) {
-    const long coupled = incremental->coupled_responses(), lagged = incremental->lagged_responses();
-    stage.coupling = WearStage::Coupling{coupled + lagged, coupled, incremental->mirrored_responses(), lagged};
-  }
-  if (first.rate_max == 0.0) return stage;  // nothing slips: nothing wears
-  scars(model, effect, stage);
-  stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));
-  if (stage.frame_positions == 0)  // with frames, drive_frames() counted its own solves
-    stage.mean_iterations_implicit =
-        double(contact->implicit_iterations) / double(std::max(1L, contact->implicit_solves));
+  tally();
+  if (first.rate_max == 0.0) return stage;
   settle(scene, model, cycle, stage);
   return stage;
 }

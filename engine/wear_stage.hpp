@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.hpp"
 #include "contact/displacement_limit.hpp"
 #include "contact/wear_limit.hpp"
 #include "engine/cycle_stage.hpp"
@@ -195,8 +197,24 @@ bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleSta
 // and the cycle stage have been computed on the same model; the wear stage runs the cycle by the route the cycle stage
 // ran. `control` reports progress, writes checkpoints, continues from one and stops on request (then
 // WearStage::interrupted).
+// A solve that does not converge part way throws WearNotConverged once a record has been taken (before that, the
+// solver's ConvergenceError).
 WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearControl& control = {});
+
+// A wear run whose solve did not converge after its first record: the solver's message (with the cycle the run had
+// reached) and the stage as far as it got: the records taken before the failure, cycles_reached the last accepted
+// step's cycle, the counts so far and each body's scar at the last record; no settled limit (under displacement
+// control that is a solve of its own).
+class WearNotConverged : public ConvergenceError {
+ public:
+  WearNotConverged(const std::string& message, std::shared_ptr<const WearStage> partial)
+      : ConvergenceError(message), partial_(std::move(partial)) {}
+  const WearStage& partial() const { return *partial_; }
+
+ private:
+  std::shared_ptr<const WearStage> partial_;  // shared: an exception is copied as it is thrown
+};
 
 // Its part of summary.json: "wear" (the law, the worn area and depth at the last record, the stick zone at the first
 // and the last, the asymptote or why there is none, where the run got to, the integrator's counts).

@@ -199,7 +199,7 @@ Result run(py::handle scene_arg, py::handle output_arg) {
       if (output) {
         OutputFolder out(scene.output_dir, OutputCommand::run);
         const DeferredStopSignals hold;
-        out.write_json("summary.json", not_converged_summary(scene, e, checked.warnings));
+        write_not_converged(scene, e, checked.warnings, out);
         out.commit();
       }
     } catch (const InputError& e) {  // found while solving: a worn contact grown to the window's end

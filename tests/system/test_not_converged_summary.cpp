@@ -1,9 +1,10 @@
-// A run whose solver does not converge (exit 3) replaces output.dir with a folder holding summary.json alone, with
-// status "not_converged": that summary names the stage that failed (failed_stage) and keeps what the stages before
-// it found, in the sections a completed run's summary gives them, with the warnings so far (docs/SCENES.md, "Output";
-// docs/OUTPUTS.md). No real scene fails on demand in a chosen stage: the test hook
+// A run whose solver does not converge (exit 3) replaces output.dir with a folder holding summary.json (and, where
+// the wear stage failed part way, the tables of its records), with status "not_converged": that summary names the
+// stage that failed (failed_stage) and keeps what the stages before it found, in the sections a completed run's
+// summary gives them, with the warnings so far (docs/SCENES.md, "Output"; docs/OUTPUTS.md). No real scene fails on demand in a chosen stage: the test hook
 // FRETWEAR_NOT_CONVERGED_IN_STAGE=<stage> (main.cpp) throws a ConvergenceError where that stage first asks whether to
-// stop, and FRETWEAR_NORMAL_MAX_ITERATIONS=k stops the normal solve short.
+// stop, FRETWEAR_NOT_CONVERGED_AT_STEP=N the wear stage after N accepted steps, and FRETWEAR_NORMAL_MAX_ITERATIONS=k
+// stops the normal solve short.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "support.hpp"
@@ -134,4 +136,76 @@ TEST_CASE("a normal solve that fails names the normal stage and has no stage's r
   CHECK(summary["warnings"] == json::array());
   CHECK_FALSE(summary.contains("contact"));
   CHECK_FALSE(summary.contains("timings"));
+}
+
+namespace {
+
+// A wear run made to fail at the first step boundary after `step` accepted steps (FRETWEAR_NOT_CONVERGED_AT_STEP),
+// against the same run stopped there (FRETWEAR_STOP_AT_STEP, a Ctrl-C at that boundary): the failed run's summary
+// holds the stopped run's wear section, key for key, and its folder the stopped run's wear tables, byte for byte; no
+// stage after the wear. `tables`: the wear tables a run of this scene writes; it fails after cycle `after`, with the
+// bodies' `frames` ("own" or "shared").
+void check_fails_as_stopped(Scratch& s, const std::string& scene, int step, const std::vector<std::string>& tables,
+                            double after, const std::string& frames) {
+  INFO("failed at step " << step);
+  s.write("s.json", scene);
+  const fs::path dir = s.work / "out" / "fail";
+  const Outcome stopped = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}});
+  REQUIRE_MESSAGE(stopped.exited(kInterrupted), stopped.describe());
+  const json interrupted = json::parse(read_file(dir / "summary.json"));
+  std::vector<std::string> kept;
+  for (const std::string& table : tables) kept.push_back(read_file(dir / table));
+
+  const Outcome failure = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_NOT_CONVERGED_AT_STEP", std::to_string(step)}});
+  REQUIRE_MESSAGE(failure.exited(kNotConverged), failure.describe());
+  const json failed = json::parse(read_file(dir / "summary.json"));
+  CHECK(failed["status"] == "not_converged");
+  CHECK(failed["failed_stage"] == "wear");
+  CHECK(failed["effects_run"] == json::array({"normal", "tangential"}));
+  CHECK(failed["timings"].contains("wear"));
+  CHECK_FALSE(failed.contains("stress"));
+  const double reached = failed["wear"]["cycles_reached"].get<double>();
+  CHECK(reached > after);
+  CHECK(reached < failed["wear"]["cycles_target"].get<double>());
+  CHECK(failed["wear"]["bodies"]["frames"] == frames);
+  CHECK(failed["message"].get<std::string>().find(fmt::format("in the wear stage at cycle {:.0f} of", reached)) !=
+        std::string::npos);
+  CHECK(fretwear::test::compare_summaries(failed["wear"], interrupted["wear"], "wear") > 20);
+  std::vector<std::string> files{".fretwear", "summary.json"};
+  files.insert(files.end(), tables.begin(), tables.end());
+  std::sort(files.begin(), files.end());
+  CHECK(files_in(dir) == files);  // the tables of the records, no plot
+  for (std::size_t k = 0; k < tables.size(); ++k) {
+    CAPTURE(tables[k]);
+    CHECK(read_file(dir / tables[k]) == kept[k]);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a wear stage that fails part way keeps its records, as a run stopped there") {
+  Scratch s;
+  SUBCASE("one load, the bodies sharing one profile; the stress asked for is not reached") {
+    json scene = wear_scene();
+    scene["effects"]["stress"] = {{"nx", 21}, {"ny", 10}};
+    scene["output"] = {{"dir", "out/fail"}, {"plots", false}};
+    check_fails_as_stopped(s, scene.dump(), 12, {"profiles.csv", "wear_history.csv"}, 0.0, "shared");
+  }
+  SUBCASE("load.blocks, failing in the second block after the first block's records") {
+    // 30 steps in the first block; the step hooks count each block's steps.
+    check_fails_as_stopped(s, R"({"name": "fail", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+      "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+      "load": {"P": 1e5, "blocks": [{"Q": {"ratio": 0.5}, "cycles": 200}, {"Q": {"ratio": 0.7}, "cycles": 5000}]},
+      "grid": {"cells": 256, "window": [-0.2e-3, 0.2e-3]},
+      "effects": {"wear": {"k": 1e-12, "cycles": 5200, "record": 8}}, "output": {"dir": "out/fail", "plots": false}})",
+                           31, {"profiles.csv", "wear_history.csv"}, 200.0, "shared");
+  }
+  SUBCASE("gross slip, each body in its own frame") {
+    check_fails_as_stopped(s, R"({"name": "fail", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+      "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
+      "load": {"P": 18500, "control": "displacement", "delta": 25e-6},
+      "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
+      "effects": {"wear": {"k": 5e-14, "cycles": 3000, "record": 4}}, "output": {"dir": "out/fail", "plots": false}})",
+                           10, {"profiles.csv", "wear_history.csv"}, 0.0, "own");
+  }
 }

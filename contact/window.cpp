@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "contact/contact_zones.hpp"
@@ -13,7 +14,7 @@
 namespace fretwear {
 namespace {
 
-constexpr double kMargin = 0.5;  // of the outer zones' half-widths, each side
+constexpr double kMargin = kWindowMargin;
 constexpr int kTrialCells = 512;
 
 // Walks from x0 in direction dir until g0 exceeds level; returns the crossing (or the support's end).
@@ -54,6 +55,27 @@ void asperity_minima(const ProfileSpec& s, double shift, double tilt, std::vecto
   }
 }
 
+// The places within 100 level-set widths of the lowest point x_low where g0 ≤ level (a scan of kScan points), and
+// the lowest point of every asperity of an envelope whose gap is within level: where a load of A P / 2 may touch.
+std::vector<double> low_places(const Profile& profile, double level) {
+  const double x_low = profile.lowest_point();
+  const double lo = crossing(profile, x_low, -1.0, level), hi = crossing(profile, x_low, +1.0, level);
+  const double w = std::max(hi - lo, 1e-9);
+  auto [s0, s1] = profile.support();
+  const double r0 = std::max(x_low - 100.0 * w, s0), r1 = std::min(x_low + 100.0 * w, s1);
+  constexpr int kScan = 20001;
+  std::vector<double> places{lo, hi};
+  for (int i = 0; i < kScan; ++i) {
+    const double x = r0 + (r1 - r0) * i / (kScan - 1);
+    if (profile.gap(x) <= level) places.push_back(x);
+  }
+  std::vector<double> asperities;
+  asperity_minima(profile.spec(), 0.0, 0.0, asperities);
+  for (double x : asperities)
+    if (profile.gap(x) <= level) places.push_back(x);
+  return places;
+}
+
 // The gap at x (outside the trial grid) left by the trial solution: g0 + K p − δ.
 double gap_after(const Profile& profile, const HalfPlaneKernel& kernel, const ContactState& state, double x) {
   const Grid& g = kernel.grid();
@@ -64,6 +86,29 @@ double gap_after(const Profile& profile, const HalfPlaneKernel& kernel, const Co
 }
 
 }  // namespace
+
+std::vector<double> asperity_lowest_points(const Profile& profile) {
+  std::vector<double> points;
+  asperity_minima(profile.spec(), 0.0, 0.0, points);
+  return points;
+}
+
+std::optional<PressedOutside> pressed_outside(const Profile& profile, const HalfPlaneKernel& kernel,
+                                              const ContactState& state, double P) {
+  if (profile.periodic()) return std::nullopt;  // a lone waviness: its window picks one of equal troughs
+  const Grid& g = kernel.grid();
+  // Below this the gap is the solution's own round-off (its approach is of the order of A P).
+  const double tolerance = 1e-9 * kernel.A() * P;
+  std::vector<double> places = low_places(profile, 0.5 * kernel.A() * P);
+  asperity_minima(profile.spec(), 0.0, 0.0, places);  // however high: the approach may exceed A P / 2
+  std::optional<PressedOutside> worst;
+  for (double x : places) {
+    if (x >= g.x_min && x <= g.x_max) continue;
+    const double gap = gap_after(profile, kernel, state, x);
+    if (gap < -tolerance && (!worst || gap < worst->gap)) worst = PressedOutside{x, gap};
+  }
+  return worst;
+}
 
 Grid align_to_support(const Profile& profile, double x_min, double x_max, int cells) {
   auto [s0, s1] = profile.support();
@@ -85,22 +130,14 @@ WindowChoice choose_window(const Profile& profile, double A, double P, int cells
     return {x_low - (1.0 + kMargin) * b, x_low + (1.0 + kMargin) * b, "load_size", b};
   }
 
-  // Everything within A P / 2 of the lowest gap may touch; look for such places well beyond the first one.
+  // Everything within A P / 2 of the lowest gap may touch; look for such places well beyond the first one, and at
+  // separate asperities beyond the scan, whose lowest points are known from the profile's tree.
   const double level = 0.5 * A * P;
-  double lo = crossing(profile, x_low, -1.0, level), hi = crossing(profile, x_low, +1.0, level);
-  const double w = std::max(hi - lo, 1e-9);
-  auto [s0, s1] = profile.support();
-  const double r0 = std::max(x_low - 100.0 * w, s0), r1 = std::min(x_low + 100.0 * w, s1);
-  constexpr int kScan = 20001;
-  for (int i = 0; i < kScan; ++i) {
-    const double x = r0 + (r1 - r0) * i / (kScan - 1);
-    if (profile.gap(x) <= level) lo = std::min(lo, x), hi = std::max(hi, x);
-  }
-  // Separate asperities may lie beyond the scan: their lowest points are known from the profile's tree.
+  const std::vector<double> places = low_places(profile, level);
+  const auto [lowest, highest] = std::minmax_element(places.begin(), places.end());
+  double lo = *lowest, hi = *highest;
   std::vector<double> asperities;
   asperity_minima(profile.spec(), 0.0, 0.0, asperities);
-  for (double x : asperities)
-    if (profile.gap(x) <= level) lo = std::min(lo, x), hi = std::max(hi, x);
 
   // Trial solves: widen until the contact stays off the trial window's ends and no asperity outside the trial window
   // would be pressed through by the trial's approach.

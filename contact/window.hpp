@@ -11,12 +11,19 @@
 //   where its cells, wider than the contacts, passed over it).
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "contact/grid.hpp"
+#include "contact/half_plane_kernel.hpp"
+#include "contact/normal_solver.hpp"
 #include "contact/profile.hpp"
 
 namespace fretwear {
+
+// The chosen window's margin beyond the outer zones, as a share of their half-widths, each side.
+inline constexpr double kWindowMargin = 0.5;
 
 struct WindowChoice {
   double x_min = 0.0, x_max = 0.0;  // m
@@ -26,6 +33,24 @@ struct WindowChoice {
 
 // Throws InputError when the load cannot be placed (a trial contact keeps reaching the ends of a 1 km window).
 WindowChoice choose_window(const Profile& profile, double A, double P, int cells);
+
+// Where a solution on a window leaves the pad pressed through beyond it: the place outside the kernel's grid with
+// the most negative gap g0 + K p − δ (m) that the solution (state: p on the grid and the approach δ) leaves there,
+// among the places where the profile may touch (within A P / 2 of its lowest gap, 100 level-set widths around it)
+// and the lowest point of every asperity of an envelope, however far and high. In 2D the surface outside the loaded
+// cells approaches more than at their outer edges (the log kernel), so an asperity as low as the contact's edges
+// beyond the window is pressed through. None for a lone waviness (periodic), whose window picks one of equal troughs,
+// and none below 1e-9 A P (round-off).
+struct PressedOutside {
+  double x = 0.0;    // m
+  double gap = 0.0;  // m, < 0
+};
+std::optional<PressedOutside> pressed_outside(const Profile& profile, const HalfPlaneKernel& kernel,
+                                              const ContactState& state, double P);
+
+// The lowest point of every asperity of an envelope (recursively, in global x), however far apart; empty for any
+// other profile.
+std::vector<double> asperity_lowest_points(const Profile& profile);
 
 // Shifts and stretches [x_min, x_max] by less than a cell so that the finite ends of the profile's support fall on
 // cell boundaries of an n-cell grid.

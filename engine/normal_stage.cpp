@@ -149,6 +149,17 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
                                    "be clipped; widen grid.window or leave it out to have it chosen",
                                    at_left ? "left" : "right", at_left ? g.x_min : g.x_max));
   }
+  // An asperity beyond the window that the load presses through: the contact the window holds is not the scene's.
+  if (!r.zones.empty() && r.summary.converged())
+    if (const auto pressed = pressed_outside(profile, *model.kernel, r.state, scene.P)) {
+      const bool given = model.window.method == "given";
+      throw InputError(fmt::format(
+          "grid.window: {}[{:.6g}, {:.6g}] m leaves out x = {:.6g} m, where the pad touches too (the load on the "
+          "window presses it {:.3g} m through there); {}",
+          given ? "" : "the window chosen, ", g.x_min, g.x_max, pressed->x, -pressed->gap,
+          given ? "widen grid.window to take that place in, or leave it out to have it chosen"
+                : "give grid.window taking in both places"));
+    }
   if (!r.summary.converged())
     throw ConvergenceError(fmt::format("normal contact: the solve stopped ({}) with residual {:.3g} above the "
                                        "tolerance {:.3g} on {} cells",

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "contact/crack_solver.hpp"
+#include "contact/window.hpp"
 
 namespace fretwear {
 
@@ -1474,8 +1475,13 @@ void check_window(const Scene& s, const Given& given, std::vector<std::string>& 
     try {
       Profile profile(s.profile);
       if (s.window) {
+        // The lowest point, or one as low (1e-15 m: round-off) of another asperity: of equal asperities any one.
         const double x = profile.lowest_point();
-        if (x < s.window->first || x > s.window->second)
+        const auto inside = [&](double p) { return p >= s.window->first && p <= s.window->second; };
+        bool holds = inside(x);
+        for (double a : asperity_lowest_points(profile))
+          holds = holds || (inside(a) && profile.gap(a) <= profile.gap(x) + 1e-15);
+        if (!holds)
           problems.push_back(fmt::format("grid.window: [{}, {}] does not contain the profile's lowest point x = {} m",
                                          s.window->first, s.window->second, x));
       } else if (profile.periodic() && !given.window) {

@@ -8,15 +8,12 @@
 #include <fmt/format.h>
 
 #include "contact/closed_form.hpp"
+#include "contact/window.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wear_stage.hpp"
 
 namespace fretwear {
 namespace {
-
-// The margin fretwear's own choice of window leaves beyond the contact, as a share of the outer zones' half-widths
-// on each side (kMargin of contact/window.cpp).
-constexpr double kWindowMargin = 0.5;
 
 // The contact as the advice sees it: from its first zone's left end to its last zone's right end, with the
 // half-widths of those outer zones (m). A single zone's come from its closed form, or else from the load–size

@@ -2,6 +2,7 @@
 // closed form), a radius of 1e-308 m (a slip of 1e205 m), a crack a metre long or a metre outside the window, a
 // 1e12-cycle run one cycle at a time (months, with no estimate). Each now either is refused for a physical reason
 // (exit 2) or completes with warnings, on stderr and in summary.json, that say what cannot be trusted.
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -209,4 +210,58 @@ TEST_CASE("a crack on too few quadrature points warns, and so does one the check
   CHECK(warning_codes(scene(90, 60)).empty());
   // At 20° on 2 points the faces' contact settles, and on 4 it cycles: the SIFs cannot be checked, which is said.
   CHECK(warning_codes(scene(20, 2)) == std::set<std::string>{"crack_quadrature"});
+}
+
+TEST_CASE("a window that leaves out an asperity the load presses into contact is refused, however high it is") {
+  // Two cylinders (R = 10 mm) at x = ±1 mm, P = 1e5 N/m, the envelope tilted by `tilt` (the +x asperity 2 mm·tilt
+  // higher). A window around one asperity used to carry the whole load on it, silently (p_max 5.91e8 Pa, where each
+  // of two equal asperities carries P/2: 4.18e8); with the two equal, the window around the -x one was refused
+  // naming the other as "the lowest point", the one around +x accepted.
+  Scratch scratch{"asperities"};
+  auto scene = [](const std::string& tilt, const std::string& window) {
+    return "{" + kMaterials + R"(, "profile": {"type": "envelope", "tilt_rad": )" + tilt +
+           R"(, "terms": [{"type": "cylinder", "R": 0.01, "offset_x": -1e-3},
+                          {"type": "cylinder", "R": 0.01, "offset_x": 1e-3}]},
+      "load": {"P": 1e5}, "grid": {"cells": 512, "window": )" + window + R"(}, "output": {"plots": false}})";
+  };
+  auto run = [&](const std::string& text, const char* command = "run") {
+    std::filesystem::remove_all(scratch.path / "output");
+    write_file(scratch.path / "s.json", text);
+    return run_program(scratch.path, {command, "-q", "s.json"});
+  };
+  auto summary = [&] { return nlohmann::json::parse(read_file(scratch.path / "output" / "s" / "summary.json")); };
+  for (const char* window : {"[0.8e-3, 1.2e-3]", "[-1.2e-3, -0.8e-3]"})
+    for (const char* command : {"validate", "run"}) {
+      CAPTURE(window);
+      const Outcome o = run(scene("0", window), command);
+      CAPTURE(o.all());
+      CHECK(o.status == 2);
+      CHECK(o.err.find("m leaves out x = ") != std::string::npos);
+      CHECK(o.err.find("where the pad touches too") != std::string::npos);
+      CHECK(!std::filesystem::exists(scratch.path / "output"));
+    }
+  // A window holding both: each carries P/2, p_max the Hertz p0 of P/2, √(P E*/(2π R)), E* = E/(2(1 − ν²)).
+  const Outcome both = run(scene("0", "[-1.2e-3, 1.2e-3]"));
+  CAPTURE(both.all());
+  REQUIRE(both.status == 0);
+  const double e_star = 2e11 / (2.0 * (1.0 - 0.3 * 0.3)), p0 = std::sqrt(0.5e5 * e_star / (M_PI * 0.01));
+  CHECK(summary()["contact"]["zones"].size() == 2);
+  CHECK(std::abs(summary()["contact"]["p_max"].get<double>() / p0 - 1.0) < 2e-3);
+  // The +x asperity raised by 2.2 µm, seven times the gap at the -x contact's edges (a²/2R = 0.32 µm), still touches
+  // (in 2D the surface beyond a loaded strip approaches more than at its edges): the window around -x is refused, and
+  // the window holding both has a contact at +x. Raised by 2.4 µm it does not touch: the narrow window is accepted
+  // and gives the wide one's contact.
+  const Outcome pressed = run(scene("1.1e-3", "[-1.2e-3, -0.8e-3]"));
+  CAPTURE(pressed.all());
+  CHECK(pressed.status == 2);
+  CHECK(pressed.err.find("m leaves out x = 0.000") != std::string::npos);
+  REQUIRE(run(scene("1.1e-3", "[-1.2e-3, 1.2e-3]")).status == 0);
+  CHECK(summary()["contact"]["zones"].size() == 2);
+  REQUIRE(run(scene("1.2e-3", "[-1.2e-3, 1.2e-3]")).status == 0);
+  const nlohmann::json wide = summary()["contact"];
+  CHECK(wide["zones"].size() == 1);
+  REQUIRE(run(scene("1.2e-3", "[-1.2e-3, -0.8e-3]")).status == 0);
+  const nlohmann::json narrow = summary()["contact"];
+  CHECK(narrow["zones"].size() == 1);
+  CHECK(std::abs(narrow["p_max"].get<double>() / wide["p_max"].get<double>() - 1.0) < 1e-3);
 }

@@ -174,6 +174,13 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
   return r;
 }
 
+bool p_max_singular(const NormalResult& n) {
+  if (n.zones.empty()) return false;
+  const double reach = 2.0 * n.grid.h();
+  return (n.edge_intensity.left && std::abs(n.x_p_max - n.zones.front().left.x) <= reach) ||
+         (n.edge_intensity.right && std::abs(n.x_p_max - n.zones.back().right.x) <= reach);
+}
+
 nlohmann::json summarise_normal(const Scene& scene, const NormalResult& n) {
   using nlohmann::json;
   const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
@@ -193,6 +200,7 @@ nlohmann::json summarise_normal(const Scene& scene, const NormalResult& n) {
       {"edge_intensity", {intensity(n.edge_intensity.left), intensity(n.edge_intensity.right)}},
       {"p_max", n.p_max},
       {"x_p_max", n.x_p_max},
+      {"p_max_singular", p_max_singular(n)},
       {"cells_in_contact", n.cells_in_contact},
       {"load", load},
   };

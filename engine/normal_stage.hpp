@@ -56,6 +56,11 @@ NormalResult solve_normal(const Scene& scene, int cells = 0);
 // "materials" and "solver.normal".
 nlohmann::json summarise_normal(const Scene& scene, const NormalResult& normal);
 
+// Whether contact.p_max sits at a singular edge: within two cells of an outer end of the contact where the pressure
+// is square-root singular (an edge intensity was fitted there: a corner of the pad). There it is the cell's share of
+// an infinite peak and grows like √(1/h) with the grid; contact.edge_intensity is what converges.
+bool p_max_singular(const NormalResult& normal);
+
 // contact.csv and, with plots, pressure.gp (with the coupled pressure at the top and the bottom of the cycle of
 // dissimilar bodies, when `p_top` and `p_bottom` are given).
 void write_normal(const Scene& scene, const NormalResult& normal, const std::vector<double>& p_top,

@@ -248,12 +248,13 @@ void wear_overshoot(const Scene& scene, const RunResult& r, std::vector<Warning>
                                100.0 * fraction, r.normal.grid.h(), 100.0 * grid, 100.0 * kWearAgreement)});
 }
 
-// Stress and fatigue maxima at a singular edge (engine/stress_stage.hpp, SingularEdges) grow with the grid: the
-// summary marks them, and the warning names them with what converges instead.
+// The contact's peak pressure, stress and fatigue maxima at a singular edge (engine/stress_stage.hpp, SingularEdges)
+// grow with the grid: the summary marks them, and the warning names them with what converges instead.
 void singular_maxima(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
   const SingularEdges edges = singular_edges_of(r);
   if (edges.x.empty()) return;
   std::vector<std::string> names;
+  if (p_max_singular(r.normal)) names.push_back("contact.p_max");
   if (!r.stress_maps.empty()) {
     nlohmann::json stress = summarise_stress(scene, r.stress_maps, r.wear ? &*r.wear : nullptr, edges);
     if (r.fatigue) add_fatigue_summary(stress, *r.fatigue, edges);
@@ -347,7 +348,7 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
     wear_overshoot(scene, result, out);
     worn_zigzag(scene, result, out);
   }
-  if (!result.stress_maps.empty() || result.life) singular_maxima(scene, result, out);
+  singular_maxima(scene, result, out);
   return out;
 }
 

@@ -1,5 +1,6 @@
 // fretwear: the command line. Exit status 0 done, 2 invalid scene (nothing written), 3 a solver did not converge,
-// 130 / 143 a wear run stopped by SIGINT (Ctrl-C) / SIGTERM (what was recorded is written, and a checkpoint).
+// 130 / 143 a run stopped by SIGINT (Ctrl-C) / SIGTERM (a wear run: what was recorded is written, and a checkpoint;
+// another stage: nothing written; while the results were written: they are written whole first).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -45,8 +46,9 @@ volatile std::sig_atomic_t g_signal = 0;
 extern "C" void on_signal(int sig) { g_signal = sig; }
 
 // SIGINT and SIGTERM ask the run to stop: a wear run at its next step boundary, with what it reached written; any
-// other stage at its next part (WearControl::stop_now), with nothing written. A second one ends the program at once
-// (SA_RESETHAND: the default action), the last checkpoint kept.
+// other stage at its next part (WearControl::stop_now), with nothing written; once the stages are done, after their
+// results are written whole. A second one ends the program at once (SA_RESETHAND: the default action), the last
+// checkpoint kept, except while results are put in place, which it waits for (DeferredStopSignals).
 void catch_stop_signals() {
   struct sigaction sa {};
   sa.sa_handler = on_signal;
@@ -54,6 +56,15 @@ void catch_stop_signals() {
   sa.sa_flags = SA_RESETHAND;
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+}
+
+// A stop that arrived once the stages were done, while their results were written (or just before): it waited for
+// them, so they are whole in output.dir; the run ends as stopped all the same, with 128 + the signal's number.
+int stopped_after_writing(const Scene& scene) {
+  std::cerr << fmt::format("fretwear: {}: stopped by signal {} after the results were written; they are complete in "
+                           "{}/\n",
+                           scene.name, int(g_signal), scene.output_dir.string());
+  return kExitSignal + int(g_signal);
 }
 
 std::string clock_time(double seconds) {
@@ -332,7 +343,9 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());
     nlohmann::json summary;
     {
-      const DeferredStopSignals hold;  // the results are written whole, or not at all
+      // The results are written whole, or not at all: a signal that arrives meanwhile (gnuplot drawing included)
+      // waits for them, and reaches on_signal as the hold ends.
+      const DeferredStopSignals hold;
       summary = write_results(scene, result, out);
       out.commit();
     }
@@ -344,16 +357,21 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
       return kExitSignal + int(g_signal);
     }
     if (scene.wear) std::filesystem::remove(control.checkpoint, ec);  // done: the checkpoint has served
+    if (g_signal != 0) return stopped_after_writing(scene);
     if (!quiet) print_report(scene, result, summary, verbose);
   } catch (const ConvergenceError& e) {
     progress.finish();
     // What the stages before the failure found is in the summary, and said on stderr as a completed run says it.
     if (const auto* failed = dynamic_cast<const StageNotConverged*>(&e); failed && failed->partial())
       print_warnings(failed->partial()->warnings);
-    const DeferredStopSignals hold;
-    write_not_converged(scene, e, checked.warnings, out);
-    out.commit();
-    throw;
+    {
+      const DeferredStopSignals hold;
+      write_not_converged(scene, e, checked.warnings, out);
+      out.commit();
+    }
+    if (g_signal == 0) throw;
+    std::cerr << fmt::format("fretwear: {}\n", e.what());
+    return stopped_after_writing(scene);
   } catch (const InputError&) {
     progress.finish();
     if (!control.resume) forget_checkpoint();
@@ -448,8 +466,8 @@ std::optional<std::string> unknown_command(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fretwear: fretting in plane elastic contacts, from one JSON scene.\n"
-               "Exit status: 0 done, 2 invalid scene (nothing written), 3 a solver did not converge, 130 / 143 a wear "
-               "run stopped by Ctrl-C / SIGTERM (what was recorded is written; continue with run --resume)."};
+               "Exit status: 0 done, 2 invalid scene (nothing written), 3 a solver did not converge, 130 / 143 a run "
+               "stopped by Ctrl-C / SIGTERM (a wear run: what was recorded is written; continue with run --resume)."};
   app.set_version_flag("--version", std::string("fretwear ") + kVersion);
   app.require_subcommand(1);
   bool quiet = false, verbose = false;

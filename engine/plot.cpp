@@ -1,27 +1,109 @@
 #include "engine/plot.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
+#include <thread>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
+
+extern char** environ;
 
 namespace fretwear {
 namespace fs = std::filesystem;
 
+namespace {
+
+// Starts `gnuplot <script>` (found on PATH) inside `dir`, with stdin from /dev/null and stdout and stderr onto the
+// open file `log`. No shell stands between: the folder's name and the script's reach gnuplot as they are, never as
+// commands. The child leads a process group of its own, so that a signal sent to fretwear's group (a terminal's
+// Ctrl-C, `timeout -s INT`) reaches fretwear alone, which decides what a stop means; SIGINT, SIGTERM and SIGQUIT are
+// at their default and no signal is blocked (fretwear blocks SIGINT and SIGTERM while it writes results).
+// Returns 0 with `pid` set, or the error number of the failure: ENOENT when gnuplot is not on PATH.
+int spawn_gnuplot(const fs::path& dir, const std::string& script, int log, pid_t& pid) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, log, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log, STDERR_FILENO);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  for (const int sig : {SIGINT, SIGTERM, SIGQUIT}) sigaddset(&defaults, sig);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  std::string program = "gnuplot", file = script;
+  char* argv[] = {program.data(), file.data(), nullptr};
+  const int failed = posix_spawnp(&pid, "gnuplot", &actions, &attributes, argv, environ);
+  posix_spawnattr_destroy(&attributes);
+  posix_spawn_file_actions_destroy(&actions);
+  return failed;
+}
+
+// Waits for the child `pid` to end and puts its wait status in `status` (a signal that interrupts the wait is let
+// through and the wait resumed); false when it cannot be waited for.
+bool wait_for(pid_t pid, int& status) {
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return false;
+  return true;
+}
+
+}  // namespace
+
 bool run_gnuplot(const fs::path& dir, const std::string& script_file) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+  // Tests only: FRETWEAR_PLOT_PAUSE_MS, a pause before each gnuplot starts, so that a test's signal lands while the
+  // results are being drawn.
+  if (const char* pause = std::getenv("FRETWEAR_PLOT_PAUSE_MS"); pause && std::atoi(pause) > 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
+  const fs::path log_file = dir / "gnuplot.log";
+  const int log = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (log < 0) {
+    std::cerr << fmt::format("fretwear: gnuplot.log could not be made in {} ({}); {} not drawn\n", dir.string(),
+                             std::strerror(errno), script_file);
+    return false;
+  }
+  pid_t pid = -1;
+  const int failed = spawn_gnuplot(dir, script_file, log, pid);
+  ::close(log);
+  int status = 0;
+  const bool waited = !failed && wait_for(pid, status);
+  std::error_code ec;
+  const bool said_nothing = fs::file_size(log_file, ec) == 0;
+  if (said_nothing) fs::remove(log_file, ec);
+  if (failed == ENOENT) {
     std::cerr << "fretwear: gnuplot not found; plots skipped (install it: apt-get install gnuplot-nox)\n";
     return false;
   }
-  const std::string cmd = fmt::format("cd '{}' && gnuplot '{}' > gnuplot.log 2>&1", dir.string(), script_file);
-  if (std::system(cmd.c_str()) != 0) {
-    std::cerr << "fretwear: gnuplot failed on " << script_file << "; see gnuplot.log among the results\n";
+  if (failed) {
+    std::cerr << fmt::format("fretwear: gnuplot could not be started on {} ({}); plots skipped\n", script_file,
+                             std::strerror(failed));
     return false;
   }
-  std::error_code ec;
-  if (fs::file_size(dir / "gnuplot.log", ec) == 0) fs::remove(dir / "gnuplot.log", ec);
+  if (!waited || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    if (said_nothing)
+      std::cerr << fmt::format("fretwear: gnuplot failed on {} ({}) and said nothing\n", script_file,
+                               !waited               ? std::string("not waited for")
+                               : WIFSIGNALED(status) ? fmt::format("ended by signal {}", WTERMSIG(status))
+                                                     : fmt::format("exit status {}", WEXITSTATUS(status)));
+    else
+      std::cerr << "fretwear: gnuplot failed on " << script_file << "; see gnuplot.log among the results\n";
+    return false;
+  }
   return true;
 }
 

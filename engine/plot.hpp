@@ -12,7 +12,11 @@ std::string svg_and_png(const std::string& stem, const std::string& plot, int wi
 // The same into <stem>.png alone: for colour maps, whose SVG holds a polygon per grid point (8 MB for 161 × 81).
 std::string png_only(const std::string& stem, const std::string& plot, int width = 1000, int height = 560);
 
-// Runs gnuplot on `script` inside `dir`; false (and a note on stderr) when gnuplot is missing or fails.
+// Runs gnuplot on `script_file` inside `dir` and waits for it; false (and a note on stderr) when gnuplot is not on
+// PATH, cannot be started or fails. gnuplot is started without a shell (any folder name is taken as it is), in a
+// process group of its own with SIGINT and SIGTERM at their default: a signal sent to fretwear's group does not end
+// it, and fretwear's own handling decides what the signal means. What gnuplot says goes to <dir>/gnuplot.log, which
+// is removed when it is empty.
 bool run_gnuplot(const std::filesystem::path& dir, const std::string& script_file);
 
 // The settings every colour map (pm3d map) shares: the viridis palette, perceptually uniform and legible in grey

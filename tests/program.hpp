@@ -70,19 +70,27 @@ inline void write_file(const fs::path& p, const std::string& bytes) {
   std::ofstream(p, std::ios::binary) << bytes;
 }
 
-// The program started in `dir`: in a process group of its own (so that the time limit ends a plotting child too),
+// A program other than fretwear and its arguments, the program first (a path, or a name looked up on PATH): each
+// word reaches it as it is, never through a shell.
+struct Command {
+  std::vector<std::string> words;
+};
+
+// The program started in `dir`: in a process group of its own (so that the time limit ends its children too),
 // stdin from /dev/null, stdout and stderr into two files outside `dir`, signals at their defaults whatever the test
 // runner's. wait() for its outcome; the destructor kills it if it still runs.
 class Running {
  public:
   Running(const fs::path& dir, const std::vector<std::string>& args, const Env& env = {},
           double time_limit = kHungAfter)
+      : Running(with_fretwear(args), dir, env, time_limit) {}
+  // Another program (a helper the tests drive: an MPI launcher, a browser), run the same way.
+  Running(const Command& command, const fs::path& dir, const Env& env = {}, double time_limit = kHungAfter)
       : time_limit_(time_limit),
         logs_(fs::temp_directory_path() / ("fretwear-test-" + std::to_string(::getpid()) + "-" +
                                           std::to_string(++counter()))) {
     fs::create_directories(logs_);
-    std::vector<std::string> words{FRETWEAR_EXE};
-    words.insert(words.end(), args.begin(), args.end());
+    std::vector<std::string> words = command.words;
     std::vector<char*> argv;
     for (auto& w : words) argv.push_back(w.data());
     argv.push_back(nullptr);
@@ -117,7 +125,7 @@ class Running {
     posix_spawnattr_setsigdefault(&attributes, &defaults);
     posix_spawnattr_setpgroup(&attributes, 0);
     posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-    const int failed = posix_spawn(&pid_, FRETWEAR_EXE, &actions, &attributes, argv.data(), envp.data());
+    const int failed = posix_spawnp(&pid_, argv[0], &actions, &attributes, argv.data(), envp.data());
     posix_spawnattr_destroy(&attributes);
     posix_spawn_file_actions_destroy(&actions);
     started_ = std::chrono::steady_clock::now();
@@ -126,7 +134,7 @@ class Running {
       std::error_code ec;
       fs::remove_all(logs_, ec);
     }
-    REQUIRE_MESSAGE(!failed, "could not start " FRETWEAR_EXE " in " << dir.string() << ": " << std::strerror(failed));
+    REQUIRE_MESSAGE(!failed, "could not start " << words[0] << " in " << dir.string() << ": " << std::strerror(failed));
   }
   ~Running() {
     if (pid_ > 0 && !reaped_) {
@@ -181,6 +189,11 @@ class Running {
   }
 
  private:
+  static Command with_fretwear(const std::vector<std::string>& args) {
+    Command c{{FRETWEAR_EXE}};
+    c.words.insert(c.words.end(), args.begin(), args.end());
+    return c;
+  }
   static int& counter() {
     static int n = 0;
     return n;
@@ -200,6 +213,10 @@ class Running {
 inline Outcome run_program(const fs::path& dir, const std::vector<std::string>& args, const Env& env = {},
                            double time_limit = kHungAfter) {
   return Running(dir, args, env, time_limit).wait();
+}
+inline Outcome run_program(const Command& command, const fs::path& dir, const Env& env = {},
+                           double time_limit = kHungAfter) {
+  return Running(command, dir, env, time_limit).wait();
 }
 
 // A scratch folder, removed with everything in it at the end of the test.

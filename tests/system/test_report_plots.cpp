@@ -2,8 +2,6 @@
 // written beside the PNGs carrying the labels and palettes of docs/OUTPUTS.md. The scripts are written whether or
 // not gnuplot is installed, so their text is tested here; the page's width at 1400 px is measured in headless
 // Chromium where CMake found it.
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -168,19 +166,14 @@ TEST_CASE("the report fits 1400 px without sideways scrolling, in headless Chrom
   page.insert(page.rfind("</body>"), probe);
   write_file(r.dir / "width_probe.html", page);
   const fs::path profile = r.scratch.root / "chromium-profile";
+  // What Chromium prints on stdout (each word reaches it as it is, never through a shell).
   auto chromium = [&](const std::string& mode, const std::string& file) {
-    const std::string cmd = fmt::format(
-        "timeout 60 '{}' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-        "--disable-background-networking --disable-component-update --disable-sync --user-data-dir='{}' "
-        "--window-size={},2000 {} 'file://{}' 2>/dev/null",
-        FRETWEAR_CHROMIUM, profile.string(), kWidth, mode, (r.dir / file).string());
-    std::string out;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    REQUIRE(pipe);
-    char buffer[4096];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
-    ::pclose(pipe);
-    return out;
+    const fretwear::test::Command command{
+        {"timeout", "60", FRETWEAR_CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update", "--disable-sync",
+         "--user-data-dir=" + profile.string(), fmt::format("--window-size={},2000", kWidth), mode,
+         "file://" + (r.dir / file).string()}};
+    return fretwear::test::run_program(command, r.scratch.work, {}, 120.0).out;
   };
   const std::string dom = chromium("--dump-dom", "width_probe.html");
   std::smatch m;

@@ -3,7 +3,6 @@
 // finished by --resume under mpirun. Built only when fretwear is built with MPI (CI installs it).
 #ifdef FRETWEAR_MPIEXEC
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,22 +25,26 @@ struct MpiOutcome {
   std::string err;
 };
 
-// `mpirun -n <ranks> fretwear <args>` in `dir` (with the flags CI needs: more ranks than cores, and root), its
-// stderr kept; `env` ("NAME=value") passed to every rank.
+// `mpirun -n <ranks> fretwear <args>` in `dir` (with the flags CI needs: more ranks than cores, and root), under
+// `timeout`, its stderr kept; `env` ("NAME=value") passed to every rank. Each word reaches mpirun as it is.
 MpiOutcome mpirun(const fs::path& dir, int ranks, const std::vector<std::string>& args, const std::string& env = {}) {
-  std::string command = "cd '" + dir.string() + "' && " + (env.empty() ? "" : "env " + env + " ") + "timeout " +
-                        std::to_string(kMpiTimeLimit) + " " + FRETWEAR_MPIEXEC + " -n " + std::to_string(ranks) +
-                        " --oversubscribe" + (::geteuid() == 0 ? " --allow-run-as-root" : "") +
-                        (env.empty() ? "" : " -x " + env.substr(0, env.find('='))) + " " + FRETWEAR_EXE;
-  for (const auto& a : args) command += " '" + a + "'";
-  const fs::path err = dir / "mpirun.err";
-  command += " > /dev/null 2> '" + err.string() + "'";
-  const int raw = std::system(command.c_str());
-  MpiOutcome o;
-  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  o.err = read_file(err);
-  fs::remove(err);
-  return o;
+  fretwear::test::Command command{
+      {"timeout", std::to_string(kMpiTimeLimit), FRETWEAR_MPIEXEC, "-n", std::to_string(ranks), "--oversubscribe"}};
+  if (::geteuid() == 0) command.words.push_back("--allow-run-as-root");
+  Env vars;
+  if (!env.empty()) {
+    const std::string name = env.substr(0, env.find('='));
+    vars.emplace_back(name, env.substr(env.find('=') + 1));
+    command.words.insert(command.words.end(), {"-x", name});
+  }
+  command.words.push_back(FRETWEAR_EXE);
+  command.words.insert(command.words.end(), args.begin(), args.end());
+  // The runner's own limit only backs up timeout's, which lets mpirun end its ranks.
+  const Outcome o = fretwear::test::run_program(command, dir, vars, kMpiTimeLimit + 60);
+  MpiOutcome m;
+  m.status = o.signal == 0 && !o.timed_out ? o.status : -1;
+  m.err = o.err;
+  return m;
 }
 
 std::vector<std::string> args(const std::string& scene, std::vector<std::string> extra = {}) {

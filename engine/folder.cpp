@@ -1,11 +1,14 @@
 #include "engine/folder.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <csignal>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <sys/stat.h>
@@ -39,6 +42,175 @@ bool ours(const fs::path& dir) {
   return fs::is_regular_file(dir / kOutputMarker, ec);
 }
 
+constexpr const char* kMarkerFormat = "fretwear-folder";
+
+// A folder's marker as read: `kind` "results" or "staging"; `listed` when it lists its entries.
+struct Marker {
+  json j = json::object();
+  std::string kind = "results";
+  bool listed = false;
+  std::set<std::string> entries;
+};
+
+Marker read_marker(const fs::path& dir) {
+  Marker m;
+  std::ifstream in(dir / kOutputMarker, std::ios::binary);
+  const json j = json::parse(in, nullptr, false);
+  if (!j.is_object() || j.value("format", "") != kMarkerFormat) return m;  // the first format: a line of text
+  m.j = j;
+  if (j.value("kind", "") == "staging") m.kind = "staging";
+  if (const auto e = j.find("entries"); e != j.end() && e->is_array()) {
+    m.listed = true;
+    for (const auto& name : *e)
+      if (name.is_string()) m.entries.insert(name.get<std::string>());
+  }
+  return m;
+}
+
+bool write_marker(const fs::path& dir, const json& j) {
+  std::ofstream out(dir / kOutputMarker, std::ios::binary | std::ios::trunc);
+  out << j.dump(2) << "\n";
+  return bool(out.flush());
+}
+
+json results_marker(const std::vector<std::string>& entries) {
+  return {{"format", kMarkerFormat},
+          {"kind", "results"},
+          {"note", "results fretwear wrote: fretwear may replace this folder while it holds only these entries"},
+          {"entries", entries}};
+}
+
+// This process, as a staging folder's marker names it.
+struct ProcessIdentity {
+  long pid = 0;
+  std::string host, boot_id;
+  long long start_time = -1;
+};
+
+std::string first_line(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+// Field 22 of /proc/<pid>/stat, the start in clock ticks after boot; -1 when it cannot be read. The fields are
+// counted after the command's name, which is in parentheses and may hold spaces and parentheses itself.
+long long start_time_of(long pid) {
+  std::ifstream in(fmt::format("/proc/{}/stat", pid));
+  const std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto close = stat.rfind(')');
+  if (close == std::string::npos) return -1;
+  std::istringstream fields(stat.substr(close + 1));
+  std::string field;
+  for (int k = 3; k <= 22 && fields >> field; ++k)
+    if (k == 22) return std::strtoll(field.c_str(), nullptr, 10);
+  return -1;
+}
+
+const ProcessIdentity& this_process() {
+  static const ProcessIdentity id = [] {
+    ProcessIdentity p;
+    p.pid = long(::getpid());
+    char host[256] = {};
+    if (::gethostname(host, sizeof host - 1) == 0) p.host = host;
+    p.boot_id = first_line("/proc/sys/kernel/random/boot_id");
+    p.start_time = start_time_of(p.pid);
+    return p;
+  }();
+  return id;
+}
+
+json staging_marker(json j) {
+  const ProcessIdentity& p = this_process();
+  j["format"] = kMarkerFormat;
+  j["kind"] = "staging";
+  j["note"] = "a folder fretwear is writing or replacing: fretwear removes it once the process pid on host has "
+              "ended without finishing it";
+  j["pid"] = p.pid;
+  j["host"] = p.host;
+  j["boot_id"] = p.boot_id;
+  j["start_time"] = p.start_time;
+  return j;
+}
+
+// True when the process a staging marker names, on this host, has ended: the host has booted since, no process has
+// its pid, or the process that has it started at another time.
+bool process_ended(const json& m) {
+  const ProcessIdentity& self = this_process();
+  const long pid = m.value("pid", 0L);
+  const std::string boot = m.value("boot_id", "");
+  if (!boot.empty() && !self.boot_id.empty() && boot != self.boot_id) return true;
+  if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) return true;
+  const long long recorded = m.value("start_time", -1LL), now = start_time_of(pid);
+  return recorded >= 0 && now >= 0 && recorded != now;
+}
+
+// The paths below `dir` (relative to the folder its walk started in, `rel`), sorted, a folder with a trailing '/';
+// a subfolder with a marker of its own is listed, not entered; the top's marker is left out.
+void list_entries(const fs::path& dir, const std::string& rel, std::vector<std::string>& entries) {
+  std::error_code ec;
+  std::set<std::string> names;
+  for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+    names.insert(it->path().filename().string());
+  for (const std::string& name : names) {
+    if (rel.empty() && name == kOutputMarker) continue;
+    const fs::path p = dir / name;
+    if (!fs::is_directory(fs::symlink_status(p, ec))) {
+      entries.push_back(rel + name);
+      continue;
+    }
+    entries.push_back(rel + name + "/");
+    if (!ours(p)) list_entries(p, rel + name + "/", entries);
+  }
+}
+
+// True when a marker without a list takes `name` (at `rel` below its folder) as fretwear's: a written_name() file at
+// the top, the folder kRunsFolder at the top, a marked folder in it.
+bool written_by_name(const std::string& rel, const std::string& name, bool folder, bool marked) {
+  if (rel.empty()) return folder ? name == kRunsFolder && !marked : written_name(name);
+  return rel == std::string(kRunsFolder) + "/" && folder && marked;
+}
+
+void collect_foreign(const fs::path& dir, const std::string& shown, const std::vector<std::string>& carried,
+                     std::vector<std::string>& found);
+
+// The walk of collect_foreign() through `folder`, `rel` below the marked folder whose marker `m` judges it.
+void walk_foreign(const fs::path& folder, const std::string& rel, const Marker& m, const std::string& shown,
+                  const std::vector<std::string>& carried, std::vector<std::string>& found) {
+  std::error_code ec;
+  std::set<std::string> names;
+  auto it = fs::directory_iterator(folder, ec);
+  for (; !ec && it != fs::directory_iterator(); it.increment(ec)) names.insert(it->path().filename().string());
+  if (ec) {  // what cannot be read cannot be told fretwear's
+    found.push_back(shown + rel + (rel.empty() ? "(its entries, which cannot be read)" : ""));
+    return;
+  }
+  for (const std::string& name : names) {
+    const bool top = rel.empty();
+    if (top && name == kOutputMarker) continue;
+    if (top && std::find(carried.begin(), carried.end(), name) != carried.end()) continue;
+    const fs::path p = folder / name;
+    const bool is_folder = fs::is_directory(fs::symlink_status(p, ec)), marked = is_folder && ours(p);
+    const std::string path = rel + name + (is_folder ? "/" : "");
+    bool own = m.listed ? m.entries.count(path) > 0 : written_by_name(rel, name, is_folder, marked);
+    if (top && marked && (name == subfolder(OutputCommand::convergence) || name == subfolder(OutputCommand::sweep)))
+      own = true;  // a command's results kept in a run's folder
+    if (!own) {
+      found.push_back(shown + path);
+    } else if (marked) {
+      collect_foreign(p, shown + path, {}, found);
+    } else if (is_folder) {
+      walk_foreign(p, path, m, shown, carried, found);
+    }
+  }
+}
+
+void collect_foreign(const fs::path& dir, const std::string& shown, const std::vector<std::string>& carried,
+                     std::vector<std::string>& found) {
+  walk_foreign(dir, "", read_marker(dir), shown, carried, found);
+}
+
 // Lends the owner every permission on `dir` (removing or moving an entry needs write permission on its folder, and
 // moving a folder into another one on the folder itself, whose `..` changes).
 void lend_owner_all(const fs::path& dir) {
@@ -47,16 +219,40 @@ void lend_owner_all(const fs::path& dir) {
     fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ec);
 }
 
-// Removes a folder of fretwear's own (marked), whatever permission bits its folders carry; leaves anything else
-// where it is.
-void remove_ours(const fs::path& dir) {
+// Removes the folder `dir`, whatever permission bits its folders carry. Only for a folder found fretwear's whole.
+void remove_folder(const fs::path& dir) {
   std::error_code ec;
-  if (!ours(dir)) return;
   lend_owner_all(dir);
   for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec))
     lend_owner_all(it->path());  // before the iterator enters it
   fs::remove_all(dir, ec);
+}
+
+// True when `dir`, named as the staging folder of process `pid`, is one a killed command left (OutputFolder's
+// staging rule, folder.hpp): fretwear may remove it.
+bool killed_leftover(const fs::path& dir, long pid) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec)) || !ours(dir)) return false;
+  const Marker m = read_marker(dir);
+  if (m.kind != "staging" || m.j.value("pid", -1L) != pid || m.j.value("host", "") != this_process().host)
+    return false;
+  return process_ended(m.j) && foreign_entries(dir).empty();
+}
+
+// The foreign entries for a message: the first few, and how many more.
+std::string entry_list(const std::vector<std::string>& entries) {
+  constexpr std::size_t kShown = 10;
+  std::string s;
+  for (std::size_t i = 0; i < entries.size() && i < kShown; ++i) s += (i ? ", " : "") + entries[i];
+  if (entries.size() > kShown) s += fmt::format(" and {} more", entries.size() - kShown);
+  return s;
+}
+
+// The names a commit of `command` carries over from the folder it replaces.
+std::vector<std::string> carried_by(OutputCommand command) {
+  if (command != OutputCommand::run) return {};
+  return {subfolder(OutputCommand::convergence), subfolder(OutputCommand::sweep)};
 }
 
 // Moves the folder `from` to `to` (another folder), keeping its permission bits.
@@ -141,9 +337,12 @@ int can_make_folder_in(const fs::path& dir) {
   return 0;
 }
 
-// The problems with writing into `target` (absolute), the folder `what` names.
+// The problems with writing into `target` (absolute), the folder `what` names, `shown` as the scene gives it. When
+// `replaced` (the command's own folder, not the run's folder above a command's subfolder), an existing target must
+// hold nothing fretwear did not write but the names `carried` over.
 void check_target(const fs::path& target, const std::string& what, const fs::path& scene_dir,
-                  std::vector<std::string>& problems) {
+                  std::vector<std::string>& problems, const fs::path& shown, bool replaced,
+                  const std::vector<std::string>& carried) {
   std::error_code ec;
   const fs::path cwd = resolved(fs::current_path(ec));
   if (is_same_or_above(target, cwd)) {
@@ -187,6 +386,12 @@ void check_target(const fs::path& target, const std::string& what, const fs::pat
     problems.push_back(fmt::format("{}: the folder \"{}\" holds files fretwear did not write (it has no {} marker) "
                                    "and would replace; give a new or an empty folder, or remove this one",
                                    what, target.string(), kOutputMarker));
+  } else if (const auto foreign = replaced && ours(target) ? foreign_entries(target, carried)
+                                                           : std::vector<std::string>{};
+             !foreign.empty()) {
+    problems.push_back(fmt::format("{}: \"{}\" holds {}, which fretwear did not write and replacing the folder "
+                                   "would remove; move them, or choose another output.dir",
+                                   what, shown.string(), entry_list(foreign)));
   } else if (::access(target.parent_path().c_str(), W_OK | X_OK) != 0) {
     // The staging folder is made beside the target, and renamed over it.
     problems.push_back(fmt::format("{}: cannot write into \"{}\" ({}), where fretwear puts the new \"{}\"; give a "
@@ -196,6 +401,19 @@ void check_target(const fs::path& target, const std::string& what, const fs::pat
 }
 
 }  // namespace
+
+bool written_name(const std::string& file) {
+  if (std::find(kWrittenFiles.begin(), kWrittenFiles.end(), file) != kWrittenFiles.end()) return true;
+  const std::string ext = fs::path(file).extension().string();
+  return file.find('/') == std::string::npos && file.size() > ext.size() &&
+         std::find(kWrittenExtensions.begin(), kWrittenExtensions.end(), ext) != kWrittenExtensions.end();
+}
+
+std::vector<std::string> foreign_entries(const fs::path& dir, const std::vector<std::string>& carried) {
+  std::vector<std::string> found;
+  collect_foreign(dir, "", carried, found);
+  return found;
+}
 
 bool staging_like(const std::string& name) {
   for (const std::string suffix : {kStagingSuffix, ".old-"}) {
@@ -249,8 +467,8 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path&
                                    dir.string()));
     return problems;
   }
-  // Staging folders of a killed command are removed by the next command writing beside them (OutputFolder::stage):
-  // a results folder named like one would be.
+  // The names of staging folders are kept for them (a command beside them may remove them, folder.hpp): a results
+  // folder is never named so.
   if (staging_like(last.filename().string())) {
     problems.push_back(fmt::format("output.dir: \"{}\" ends like the staging folders fretwear makes and removes "
                                    "beside a results folder (<name>.partial-<digits>, <name>.old-<digits>); give a "
@@ -261,11 +479,12 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path&
   if (!link_problems(dir, "output.dir", problems)) return problems;
   const fs::path scene_dir = scene_file.empty() ? fs::path() : resolved(scene_file).parent_path();
   const fs::path target = resolved(dir);
-  check_target(target, "output.dir", scene_dir, problems);
+  check_target(target, "output.dir", scene_dir, problems, dir, command == OutputCommand::run, carried_by(command));
   if (command != OutputCommand::run && problems.empty()) {
     const std::string sub = subfolder(command);
     const std::string what = fmt::format("output.dir (its subfolder {}/)", sub);
-    if (link_problems(dir / sub, what, problems)) check_target(target / sub, what, scene_dir, problems);
+    if (link_problems(dir / sub, what, problems))
+      check_target(target / sub, what, scene_dir, problems, dir / sub, true, {});
   }
   return problems;
 }
@@ -283,7 +502,7 @@ void OutputFolder::stage() const {
   // parent of a command's subfolder is the run's folder: it is marked as fretwear's own.
   for (fs::path p = fs::absolute(staging_, ec).parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
     made_parents_.insert(made_parents_.begin(), p);
-  // Staging folders of commands that were killed (their process is gone) are removed.
+  // Staging folders of commands that were killed are removed (the rule in folder.hpp); this one's name among them.
   const fs::path parent = dir_.parent_path().empty() ? fs::path(".") : dir_.parent_path();
   const std::string name = dir_.filename().string();
   for (const auto& e : fs::directory_iterator(parent, ec)) {
@@ -292,22 +511,25 @@ void OutputFolder::stage() const {
       if (entry.rfind(prefix, 0) != 0) continue;
       const std::string pid = entry.substr(prefix.size());
       if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
-      if (::kill(pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) remove_ours(e.path());
+      if (killed_leftover(e.path(), std::stol(pid))) remove_folder(e.path());
     }
   }
   ec.clear();
-  remove_ours(staging_);
+  if (fs::exists(fs::symlink_status(staging_, ec)))
+    throw SceneError({fmt::format("output.dir: \"{}\" exists and is not a staging folder fretwear may remove; fretwear "
+                                  "writes the results there before moving them into \"{}\": move it",
+                                  staging_.string(), dir_.string())});
+  ec.clear();
   fs::create_directories(staging_, ec);
-  if (!ec) std::ofstream(staging_ / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
+  if (!ec && !write_marker(staging_, staging_marker(json::object()))) ec = std::make_error_code(std::errc::io_error);
   // A command's subfolder lives in the run's folder, which is fretwear's own from then on: marked when made here or
-  // found empty.
+  // found empty, listing no entries of its own.
   const fs::path run_folder = fs::absolute(dir_).parent_path();
   if (!ec && command_ != OutputCommand::run && !ours(run_folder)) {
     int entries = 0;
     for (auto it = fs::directory_iterator(run_folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
       entries += it->path().filename() != staging_.filename();
-    if (entries == 0)
-      std::ofstream(run_folder / kOutputMarker) << "fretwear's results: fretwear may replace this folder\n";
+    if (entries == 0) write_marker(run_folder, results_marker({}));
   }
   if (ec || ::access(staging_.c_str(), W_OK) != 0 || !ours(staging_)) {
     const std::string why = ec ? ec.message() : "permission denied";
@@ -319,7 +541,7 @@ void OutputFolder::stage() const {
 }
 
 OutputFolder::~OutputFolder() {
-  if (committed_ || !staged_) return;
+  if (committed_ || kept_ || !staged_) return;
   std::error_code ec;
   fs::remove_all(staging_, ec);
   for (auto p = made_parents_.rbegin(); p != made_parents_.rend(); ++p) {
@@ -331,6 +553,8 @@ OutputFolder::~OutputFolder() {
 }
 
 fs::path OutputFolder::path(const std::string& file) const {
+  if (!(file.empty() || file == kRunsFolder || written_name(file)))  // the markers judge folders by these names
+    throw Error(fmt::format("internal: \"{}\" is not a name fretwear writes (kWrittenFiles, kWrittenExtensions)", file));
   stage();
   return staging_ / file;
 }
@@ -343,38 +567,67 @@ void OutputFolder::write(const std::string& file, const std::string& content) co
 
 void OutputFolder::write_json(const std::string& file, const json& j) const { write(file, j.dump(2) + "\n"); }
 
+void OutputFolder::keep_staging() {
+  std::vector<std::string> entries;
+  list_entries(staging_, "", entries);
+  write_marker(staging_, results_marker(entries));
+  kept_ = true;
+}
+
 void OutputFolder::commit() {
   stage();
   std::error_code ec;
+  std::vector<std::string> entries;  // what the command wrote, before anything is carried over
+  list_entries(staging_, "", entries);
+  auto failed = [&](const std::string& why) {
+    keep_staging();
+    return Error(fmt::format("{}; the results are in {}", why, staging_.string()));
+  };
   if (const auto status = fs::symlink_status(dir_, ec); fs::exists(status)) {
-    if (!fs::is_directory(status) || (!ours(dir_) && !fs::is_empty(dir_, ec)))  // checked before; changed since
-      throw Error(fmt::format("{} changed while fretwear ran and is no longer a folder of its own; the results are "
-                              "in {}",
-                              dir_.string(), staging_.string()));
+    // Checked before the command computed; the user may have changed it since.
+    if (!fs::is_directory(status) || (!ours(dir_) && !fs::is_empty(dir_, ec))) {
+      keep_staging();
+      throw SceneError({fmt::format("output.dir: \"{}\" changed while fretwear ran and is no longer a folder of its "
+                                    "own; the results are in \"{}\"",
+                                    dir_.string(), staging_.string())});
+    }
+    const bool earlier_results = ours(dir_);
+    if (const auto foreign = earlier_results ? foreign_entries(dir_, carried_by(command_))
+                                             : std::vector<std::string>{};
+        !foreign.empty()) {
+      keep_staging();
+      throw SceneError({fmt::format("output.dir: \"{}\" came to hold {} while fretwear ran, which fretwear did not "
+                                    "write and replacing the folder would remove; it is left as it was, and the "
+                                    "results are in \"{}\"",
+                                    dir_.string(), entry_list(foreign), staging_.string())});
+    }
     fs::path old = dir_;
     old += fmt::format(".old-{}", ::getpid());
-    const bool earlier_results = ours(dir_);
     if (earlier_results) {
+      // Marked as a staging folder of this process before it takes a staging folder's name, so that a later command
+      // may remove it if this one is killed now, and nothing else so named.
+      write_marker(dir_, staging_marker(read_marker(dir_).j));
       fs::rename(dir_, old, ec);
     } else {
       fs::remove(dir_, ec);  // empty
     }
-    if (ec) throw Error(fmt::format("cannot replace {}: {}; the results are in {}", dir_.string(), ec.message(),
-                                    staging_.string()));
+    if (ec) throw failed(fmt::format("cannot replace {}: {}", dir_.string(), ec.message()));
     if (command_ == OutputCommand::run && earlier_results) {  // the other commands' results stay
-      lend_owner_all(old);  // discarded below
+      lend_owner_all(old);
       for (const OutputCommand other : {OutputCommand::convergence, OutputCommand::sweep})
         carry(old / subfolder(other), staging_ / subfolder(other));
     }
+    if (!write_marker(staging_, results_marker(entries)))
+      throw failed(fmt::format("cannot write {} in {}", kOutputMarker, staging_.string()));
     fs::permissions(staging_, status.permissions(), fs::perm_options::replace, ec);  // the target's bits stay
     fs::rename(staging_, dir_, ec);
-    if (ec) throw Error(fmt::format("cannot move the results into {}: {}; they are in {}", dir_.string(), ec.message(),
-                                    staging_.string()));
-    remove_ours(old);
+    if (ec) throw failed(fmt::format("cannot move the results into {}: {}", dir_.string(), ec.message()));
+    if (earlier_results && foreign_entries(old).empty()) remove_folder(old);
   } else {
+    if (!write_marker(staging_, results_marker(entries)))
+      throw failed(fmt::format("cannot write {} in {}", kOutputMarker, staging_.string()));
     fs::rename(staging_, dir_, ec);
-    if (ec) throw Error(fmt::format("cannot move the results into {}: {}; they are in {}", dir_.string(), ec.message(),
-                                    staging_.string()));
+    if (ec) throw failed(fmt::format("cannot move the results into {}: {}", dir_.string(), ec.message()));
   }
   committed_ = true;
 }

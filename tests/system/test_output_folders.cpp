@@ -4,8 +4,15 @@
 // the scene, ".", "..", a path ending in "/..", "/", or any ancestor of the working folder. A missing folder, an
 // empty one or one fretwear made is accepted, and the folder made holds the marker. Each command owns its part:
 // `run` output.dir, `convergence` <output.dir>/convergence/, `sweep` <output.dir>/sweep/; none removes another's.
+// A folder fretwear made is replaced only while it holds nothing but what its marker lists (or, for a marker that
+// lists nothing, the names fretwear writes); a folder named like a staging folder beside it is removed only when its
+// marker says it is the staging folder of a process of this host that has ended.
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
 #include <functional>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -514,4 +521,328 @@ TEST_CASE("a replaced folder keeps its permission bits") {
   CHECK(fs::status(s.work / "ro" / "convergence").permissions() == fs::perms(0700));
   CHECK(fs::exists(s.work / "ro" / "convergence" / "convergence.csv"));
   fs::permissions(s.work / "ro", fs::perms(0755));
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// What fretwear may remove: only what it wrote (SCENES.md, "Output folders"). A folder's marker lists what the
+// command wrote there; a rerun refuses, before anything is computed, a folder holding anything else, and names it.
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The marker of the first format, which listed nothing: its folder may hold only the names fretwear writes.
+constexpr const char* kFirstFormatMarker = "fretwear's results: fretwear may replace this folder\n";
+
+// Runs `command` of the scene s.json beforehand, as a case's preparation: it must complete.
+void command_before(const Scratch& s, const std::string& command) {
+  const Outcome r = s.fretwear(command_line(command, "s.json"));
+  REQUIRE_MESSAGE(r.exited(kDone), "the preparing " << command << ": " << r.describe());
+}
+
+// The first run folder of a sweep in `sweep` (its runs/), relative to it.
+std::string first_run(const fs::path& sweep) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(sweep / "runs")) names.push_back(e.path().filename().string());
+  REQUIRE(!names.empty());
+  std::sort(names.begin(), names.end());
+  return "runs/" + names.front();
+}
+
+// `args` is refused: exit 2, a message naming output.dir and each of `says`, and the tree as it was.
+void refused_untouched(const Scratch& s, const std::vector<std::string>& args, const std::vector<std::string>& says) {
+  const Snapshot before = s.snapshot();
+  const Outcome r = s.fretwear(args);
+  CHECK_MESSAGE(r.exited(kInvalid), "want exit 2, got " << r.describe());
+  CHECK_MESSAGE(r.err.find("output.dir") != std::string::npos, "the message should name output.dir: " << r.describe());
+  for (const auto& word : says)
+    CHECK_MESSAGE(r.err.find(word) != std::string::npos, "the message should name " << word << ": " << r.describe());
+  CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "the tree changed: " << join(changes(before, s.snapshot())));
+}
+
+// The start of this process in clock ticks after boot (field 22 of /proc/self/stat), the host's name and its boot
+// id: what a staging folder's marker records of the process writing it.
+struct ThisProcess {
+  long long start_time = -1;
+  std::string host, boot_id;
+  ThisProcess() {
+    const std::string stat = read_file("/proc/self/stat");
+    std::istringstream fields(stat.substr(stat.rfind(')') + 1));
+    std::string field;
+    for (int k = 3; k <= 22 && fields >> field; ++k)
+      if (k == 22) start_time = std::stoll(field);
+    char name[256] = {};
+    ::gethostname(name, sizeof name - 1);
+    host = name;
+    boot_id = read_file("/proc/sys/kernel/random/boot_id");
+    if (!boot_id.empty() && boot_id.back() == '\n') boot_id.pop_back();
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a rerun refuses to remove the user's files in its results folder, naming each") {
+  // The reproducer: a user's note, a folder of theirs, a copy of the resolved scene to edit.
+  Scratch s;
+  json scene = base_scene();
+  scene["name"] = "b";
+  s.write("b.json", scene.dump());
+  REQUIRE(s.fretwear({"run", "b.json", "-q"}).exited(kDone));
+  const fs::path out = s.work / "output" / "b";
+  s.write("output/b/notes.txt", "x\n");
+  fs::create_directory(out / "mystuff");
+  fs::copy_file(out / "scene.resolved.json", out / "variant.json");
+  refused_untouched(s, {"run", "b.json"}, {"\"output/b\"", "notes.txt", "mystuff/", "variant.json"});
+  refused_untouched(s, {"validate", "b.json"}, {"notes.txt"});
+  // Moved away, the folder is fretwear's again.
+  fs::remove(out / "notes.txt");
+  fs::remove(out / "mystuff");
+  fs::remove(out / "variant.json");
+  const Outcome r = s.fretwear({"run", "b.json", "-q"});
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+}
+
+TEST_CASE("output.dir refused when fretwear's folder holds entries it did not write, of either marker format") {
+  const auto earlier_run = [](const Scratch& s) { run_before(s, "s.json", scene_text(Setup{})); };
+  const auto first_format = [](const Scratch& s) { s.write("output/h/.fretwear", kFirstFormatMarker); };
+  const std::vector<FolderCase> cases = {
+      {"a file of the user's added",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         s.write("output/h/notes.txt", "the user's\n");
+         return Setup{};
+       },
+       "run", "notes.txt"},
+      {"an empty folder of the user's added",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         fs::create_directory(s.work / "output" / "h" / "mystuff");
+         return Setup{};
+       },
+       "run", "mystuff/"},
+      {"a hidden file of the user's added",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         s.write("output/h/.notes", "the user's\n");
+         return Setup{};
+       },
+       "run", ".notes"},
+      {"a marker of the first format, a file of the user's added",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         first_format(s);
+         s.write("output/h/notes.txt", "the user's\n");
+         return Setup{};
+       },
+       "run", "notes.txt"},
+      {"a marker of the first format, a scene of the user's added",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         first_format(s);
+         s.write("output/h/variant.json", "{}\n");
+         return Setup{};
+       },
+       "run", "variant.json"},
+      {"a marker of the first format, a folder of the user's holding a plot",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         first_format(s);
+         fs::create_directory(s.work / "output" / "h" / "mine");
+         fs::copy_file(s.work / "output" / "h" / "summary.json", s.work / "output" / "h" / "mine" / "summary.json");
+         return Setup{};
+       },
+       "run", "mine/"},
+      {"a run folder a convergence study made, a file of the user's added",
+       [](const Scratch& s) {
+         s.write("s.json", scene_text(Setup{}));
+         command_before(s, "convergence");
+         s.write("output/h/notes.txt", "the user's\n");
+         return Setup{};
+       },
+       "run", "notes.txt"},
+  };
+  for (const auto& c : cases) check_refused(c);
+}
+
+TEST_CASE("output.dir accepted: fretwear's folder of either marker format holding only what fretwear writes") {
+  const std::vector<FolderCase> cases = {
+      {"a marker of the first format",
+       [](const Scratch& s) {
+         run_before(s, "s.json", scene_text(Setup{}));
+         s.write("output/h/.fretwear", kFirstFormatMarker);
+         return Setup{};
+       }},
+      {"a marker of the first format, with the other commands' folders",
+       [](const Scratch& s) {
+         s.write("s.json", scene_text(Setup{}));
+         for (const char* command : {"run", "convergence", "sweep"}) command_before(s, command);
+         for (const char* at : {"output/h/.fretwear", "output/h/convergence/.fretwear", "output/h/sweep/.fretwear"})
+           s.write(at, kFirstFormatMarker);
+         const fs::path sweep = s.work / "output" / "h" / "sweep";
+         s.write((fs::path("output/h/sweep") / first_run(sweep) / ".fretwear").string(), kFirstFormatMarker);
+         return Setup{};
+       }},
+  };
+  for (const auto& c : cases) check_accepted(c, "output/h");
+  for (const char* command : {"convergence", "sweep"})
+    check_accepted({"a marker of the first format",
+                    [command](const Scratch& s) {
+                      s.write("s.json", scene_text(Setup{}));
+                      command_before(s, command);
+                      s.write("output/h/" + std::string(command) + "/.fretwear", kFirstFormatMarker);
+                      return Setup{};
+                    },
+                    command},
+                   "output/h");
+}
+
+TEST_CASE("the marker lists what the command wrote, and a rerun replaces exactly that") {
+  Scratch s;
+  s.write("s.json", base_scene().dump());
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}).exited(kDone));
+  const fs::path out = s.work / "output" / "h";
+  const json marker = json::parse(read_file(out / ".fretwear"), nullptr, false);
+  REQUIRE(marker.is_object());
+  CHECK(marker["format"] == "fretwear-folder");
+  CHECK(marker["kind"] == "results");
+  std::vector<std::string> present;
+  for (const auto& e : fs::directory_iterator(out))
+    if (e.path().filename() != ".fretwear") present.push_back(e.path().filename().string());
+  std::sort(present.begin(), present.end());
+  CHECK(marker["entries"].get<std::vector<std::string>>() == present);
+  CHECK(std::find(present.begin(), present.end(), "summary.json") != present.end());
+}
+
+TEST_CASE("the convergence and sweep folders refuse entries fretwear did not write; a run carries them over") {
+  Scratch s;
+  s.write("s.json", base_scene().dump());
+  for (const char* command : {"run", "convergence", "sweep"}) command_before(s, command);
+  const fs::path out = s.work / "output" / "h";
+  s.write("output/h/convergence/notes.txt", "the user's, in convergence/\n");
+  const std::string run = first_run(out / "sweep");
+  s.write("output/h/sweep/" + run + "/notes.txt", "the user's, in a run of the sweep\n");
+  s.write("output/h/sweep/runs/mine.csv", "the user's, among the runs\n");
+  refused_untouched(s, command_line("convergence", "s.json"), {"convergence/", "notes.txt"});
+  refused_untouched(s, command_line("sweep", "s.json"), {run + "/notes.txt", "runs/mine.csv"});
+  // The run replaces its own folder and carries the two over, the user's files in them as they were.
+  const Snapshot before = s.snapshot();
+  const Outcome r = s.fretwear(command_line("run", "s.json"));
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+  const Snapshot after = s.snapshot();
+  const std::vector<std::string> kept = {"output/h/convergence/notes.txt", "output/h/sweep/" + run + "/notes.txt",
+                                         "output/h/sweep/runs/mine.csv", "output/h/convergence/convergence.csv"};
+  for (const std::string& file : kept) {
+    const std::string key = (s.work / file).lexically_relative(s.tree).generic_string();
+    const bool same = after.count(key) == 1 && after.at(key) == before.at(key);
+    CHECK_MESSAGE(same, file << " is gone or changed");
+  }
+}
+
+TEST_CASE("a file the user adds while the run computes is left, and the results kept beside it") {
+  // Checked before anything is computed, and again when the results are put in place: a wear run paused at each
+  // step boundary gives the time to add it.
+  Scratch s;
+  json scene = wear_scene();
+  scene["output"] = {{"plots", false}};
+  s.write("s.json", scene.dump());
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}).exited(kDone));
+  const fs::path out = s.work / "output" / "h";
+  const std::string summary = read_file(out / "summary.json");
+  Child child = s.start({"run", "s.json", "-q"}, {{"FRETWEAR_STEP_PAUSE_MS", "150"}});
+  const pid_t pid = child.pid();
+  ::usleep(700000);
+  REQUIRE(child.running());
+  s.write("output/h/notes.txt", "written while fretwear ran\n");
+  const Outcome r = child.wait();
+  CHECK_MESSAGE(r.exited(kInvalid), "want exit 2, got " << r.describe());
+  CHECK_MESSAGE(r.err.find("notes.txt") != std::string::npos, r.describe());
+  CHECK(read_file(out / "notes.txt") == "written while fretwear ran\n");
+  CHECK(read_file(out / "summary.json") == summary);
+  const fs::path kept = s.work / "output" / ("h.partial-" + std::to_string(pid));
+  CHECK_MESSAGE(r.err.find(kept.filename().string()) != std::string::npos, r.describe());
+  CHECK(fs::exists(kept / "summary.json"));
+  const json marker = json::parse(read_file(kept / ".fretwear"), nullptr, false);
+  CHECK_MESSAGE(marker.value("kind", "") == "results", marker.dump());
+}
+
+TEST_CASE("copies of a results folder beside it are kept, whatever their names") {
+  // The reproducer: backups named like staging folders, of no running process, with the user's notes in one.
+  Scratch s;
+  json scene = base_scene();
+  scene["name"] = "b";
+  s.write("b.json", scene.dump());
+  REQUIRE(s.fretwear({"run", "b.json", "-q"}).exited(kDone));
+  const fs::path output = s.work / "output";
+  for (const char* copy : {"b.old-20241127", "b.partial-4000000", "b.old-4000001"})
+    fs::copy(output / "b", output / copy, fs::copy_options::recursive);
+  s.write("output/b.old-20241127/mynotes.txt", "mine\n");
+  const Snapshot before = s.snapshot();
+  const Outcome r = s.fretwear({"run", "-q", "b.json"});
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+  const std::string exempt = (output / "b").lexically_relative(s.tree).generic_string();
+  CHECK_MESSAGE(changes(before, s.snapshot(), {exempt}).empty(),
+                "touched: " << join(changes(before, s.snapshot(), {exempt})));
+}
+
+TEST_CASE("a killed command's staging folder is removed by the next, unless it holds an entry of the user's") {
+  // A sweep killed after its first run leaves <output.dir>/sweep.partial-<pid>, marked as its staging folder.
+  const std::vector<std::string> sweep = {"sweep", "s.json", "--vary", "load.P=5e4,1e5,2e5", "--jobs", "1", "-q"};
+  auto killed_sweep = [&](const Scratch& s) {
+    s.write("s.json", base_scene().dump());
+    const Outcome killed = s.fretwear(sweep, {{"FRETWEAR_SWEEP_KILL_AFTER_RUNS", "1"}});
+    REQUIRE_MESSAGE(killed.signal == SIGKILL, killed.describe());
+    std::vector<fs::path> staging;
+    for (const auto& e : fs::directory_iterator(s.work / "output" / "h"))
+      if (e.path().filename().string().rfind("sweep.partial-", 0) == 0) staging.push_back(e.path());
+    REQUIRE(staging.size() == 1);
+    const json marker = json::parse(read_file(staging.front() / ".fretwear"), nullptr, false);
+    CHECK_MESSAGE(marker.value("kind", "") == "staging", marker.dump());
+    return staging.front();
+  };
+  {
+    Scratch s;
+    const fs::path leftover = killed_sweep(s);
+    const Outcome r = s.fretwear(sweep);
+    CHECK_MESSAGE(r.exited(kDone), r.describe());
+    CHECK_MESSAGE(!fs::exists(leftover), leftover.string() << " is left");
+  }
+  {
+    Scratch s;
+    const fs::path leftover = killed_sweep(s);
+    write_file(leftover / "runs" / "notes.txt", "the user's, in a killed sweep's folder\n");
+    const Outcome r = s.fretwear(sweep);
+    CHECK_MESSAGE(r.exited(kDone), r.describe());
+    CHECK(read_file(leftover / "runs" / "notes.txt") == "the user's, in a killed sweep's folder\n");
+  }
+}
+
+TEST_CASE("a staging folder is removed only when its marker names a process of this host that has ended") {
+  // Markers made here name this test's process (alive): as it is, it is kept; with another start time it names a
+  // process that has ended (its pid taken since), and is removed; on another host it is kept.
+  const ThisProcess self;
+  REQUIRE(self.start_time >= 0);
+  struct Case {
+    std::string label;
+    long long start_time;
+    std::string host;
+    bool removed;
+  };
+  const std::vector<Case> cases = {
+      {"a live process", self.start_time, self.host, false},
+      {"another process with the pid", self.start_time + 1, self.host, true},
+      {"a process of another host", self.start_time + 1, self.host + "-elsewhere", false},
+  };
+  for (const Case& c : cases) {
+    INFO("case: " << c.label);
+    Scratch s;
+    s.write("s.json", base_scene().dump());
+    const std::string name = "output/h.partial-" + std::to_string(::getpid());
+    s.write(name + "/summary.json", "{}\n");
+    const json marker = {{"format", "fretwear-folder"}, {"kind", "staging"},      {"pid", long(::getpid())},
+                         {"host", c.host},              {"boot_id", self.boot_id}, {"start_time", c.start_time}};
+    s.write(name + "/.fretwear", marker.dump());
+    const Outcome r = s.fretwear({"run", "s.json", "-q"});
+    CHECK_MESSAGE(r.exited(kDone), r.describe());
+    CHECK(fs::exists(s.work / name) == !c.removed);
+  }
 }

@@ -37,11 +37,6 @@ fs::path resolved(const fs::path& p) {
   return r;
 }
 
-bool ours(const fs::path& dir) {
-  std::error_code ec;
-  return fs::is_regular_file(dir / kOutputMarker, ec);
-}
-
 constexpr const char* kMarkerFormat = "fretwear-folder";
 
 // A folder's marker as read: `kind` "results" or "staging"; `listed` when it lists its entries.
@@ -161,7 +156,7 @@ void list_entries(const fs::path& dir, const std::string& rel, std::vector<std::
       continue;
     }
     entries.push_back(rel + name + "/");
-    if (!ours(p)) list_entries(p, rel + name + "/", entries);
+    if (!has_marker(p)) list_entries(p, rel + name + "/", entries);
   }
 }
 
@@ -191,7 +186,7 @@ void walk_foreign(const fs::path& folder, const std::string& rel, const Marker& 
     if (top && name == kOutputMarker) continue;
     if (top && std::find(carried.begin(), carried.end(), name) != carried.end()) continue;
     const fs::path p = folder / name;
-    const bool is_folder = fs::is_directory(fs::symlink_status(p, ec)), marked = is_folder && ours(p);
+    const bool is_folder = fs::is_directory(fs::symlink_status(p, ec)), marked = is_folder && has_marker(p);
     const std::string path = rel + name + (is_folder ? "/" : "");
     bool own = m.listed ? m.entries.count(path) > 0 : written_by_name(rel, name, is_folder, marked);
     if (top && marked && (name == subfolder(OutputCommand::convergence) || name == subfolder(OutputCommand::sweep)))
@@ -227,17 +222,6 @@ void remove_folder(const fs::path& dir) {
        it.increment(ec))
     lend_owner_all(it->path());  // before the iterator enters it
   fs::remove_all(dir, ec);
-}
-
-// True when `dir`, named as the staging folder of process `pid`, is one a killed command left (OutputFolder's
-// staging rule, folder.hpp): fretwear may remove it.
-bool killed_leftover(const fs::path& dir, long pid) {
-  std::error_code ec;
-  if (!fs::is_directory(fs::symlink_status(dir, ec)) || !ours(dir)) return false;
-  const Marker m = read_marker(dir);
-  if (m.kind != "staging" || m.j.value("pid", -1L) != pid || m.j.value("host", "") != this_process().host)
-    return false;
-  return process_ended(m.j) && foreign_entries(dir).empty();
 }
 
 // The foreign entries for a message: the first few, and how many more.
@@ -382,11 +366,11 @@ void check_target(const fs::path& target, const std::string& what, const fs::pat
     problems.push_back(fmt::format("{}: \"{}\" is an existing file, which fretwear would replace; give the path of "
                                    "a folder",
                                    what, target.string()));
-  } else if (!ours(target) && !fs::is_empty(target, ec)) {
+  } else if (!has_marker(target) && !fs::is_empty(target, ec)) {
     problems.push_back(fmt::format("{}: the folder \"{}\" holds files fretwear did not write (it has no {} marker) "
                                    "and would replace; give a new or an empty folder, or remove this one",
                                    what, target.string(), kOutputMarker));
-  } else if (const auto foreign = replaced && ours(target) ? foreign_entries(target, carried)
+  } else if (const auto foreign = replaced && has_marker(target) ? foreign_entries(target, carried)
                                                            : std::vector<std::string>{};
              !foreign.empty()) {
     problems.push_back(fmt::format("{}: \"{}\" holds {}, which fretwear did not write and replacing the folder "
@@ -407,6 +391,20 @@ bool written_name(const std::string& file) {
   const std::string ext = fs::path(file).extension().string();
   return file.find('/') == std::string::npos && file.size() > ext.size() &&
          std::find(kWrittenExtensions.begin(), kWrittenExtensions.end(), ext) != kWrittenExtensions.end();
+}
+
+bool has_marker(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_regular_file(dir / kOutputMarker, ec);
+}
+
+bool killed_leftover(const fs::path& dir, long pid) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec)) || !has_marker(dir)) return false;
+  const Marker m = read_marker(dir);
+  if (m.kind != "staging" || m.j.value("pid", -1L) != pid || m.j.value("host", "") != this_process().host)
+    return false;
+  return process_ended(m.j) && foreign_entries(dir).empty();
 }
 
 std::vector<std::string> foreign_entries(const fs::path& dir, const std::vector<std::string>& carried) {
@@ -525,13 +523,13 @@ void OutputFolder::stage() const {
   // A command's subfolder lives in the run's folder, which is fretwear's own from then on: marked when made here or
   // found empty, listing no entries of its own.
   const fs::path run_folder = fs::absolute(dir_).parent_path();
-  if (!ec && command_ != OutputCommand::run && !ours(run_folder)) {
+  if (!ec && command_ != OutputCommand::run && !has_marker(run_folder)) {
     int entries = 0;
     for (auto it = fs::directory_iterator(run_folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
       entries += it->path().filename() != staging_.filename();
     if (entries == 0) write_marker(run_folder, results_marker({}));
   }
-  if (ec || ::access(staging_.c_str(), W_OK) != 0 || !ours(staging_)) {
+  if (ec || ::access(staging_.c_str(), W_OK) != 0 || !has_marker(staging_)) {
     const std::string why = ec ? ec.message() : "permission denied";
     fs::remove_all(staging_, ec);
     throw SceneError({fmt::format("output.dir: cannot write into \"{}\" ({}); give a folder you can write to",
@@ -585,13 +583,13 @@ void OutputFolder::commit() {
   };
   if (const auto status = fs::symlink_status(dir_, ec); fs::exists(status)) {
     // Checked before the command computed; the user may have changed it since.
-    if (!fs::is_directory(status) || (!ours(dir_) && !fs::is_empty(dir_, ec))) {
+    if (!fs::is_directory(status) || (!has_marker(dir_) && !fs::is_empty(dir_, ec))) {
       keep_staging();
       throw SceneError({fmt::format("output.dir: \"{}\" changed while fretwear ran and is no longer a folder of its "
                                     "own; the results are in \"{}\"",
                                     dir_.string(), staging_.string())});
     }
-    const bool earlier_results = ours(dir_);
+    const bool earlier_results = has_marker(dir_);
     if (const auto foreign = earlier_results ? foreign_entries(dir_, carried_by(command_))
                                              : std::vector<std::string>{};
         !foreign.empty()) {

@@ -48,6 +48,13 @@ bool written_name(const std::string& file);  // a name of kWrittenFiles or with 
 std::vector<std::string> foreign_entries(const std::filesystem::path& dir,
                                          const std::vector<std::string>& carried = {});
 
+// True when `dir` holds the marker kOutputMarker: a folder fretwear made.
+bool has_marker(const std::filesystem::path& dir);
+
+// True when `dir`, named as the staging folder of process `pid` (<name>.partial-<pid>, <name>.old-<pid>), is one a
+// killed command left, which a command writing beside it may remove: the rule below kStagingSuffix.
+bool killed_leftover(const std::filesystem::path& dir, long pid);
+
 // The commands that write results, each into its own folder: run into output.dir, convergence and sweep into their
 // subfolders of it (output_folder()), so that no command removes another's results.
 enum class OutputCommand { run, convergence, sweep };

@@ -210,14 +210,10 @@ std::string clock_time(double seconds) {
                    : fmt::format("{}:{:02}", s / 60, s % 60);
 }
 
-bool ours(const fs::path& dir) {
-  std::error_code ec;
-  return fs::is_regular_file(dir / kOutputMarker, ec);
-}
-
 // The sweep folders a killed sweep of this scene left beside `dir` (<output.dir>/sweep): its staging folder
 // sweep.partial-<pid>, renamed here to sweep.resume-<pid> so that the staging of this sweep does not remove it, and
-// those of earlier resumes; newest first. --resume asserts that no other sweep of the scene is running.
+// those of earlier resumes; newest first. Only folders a killed sweep left (killed_leftover(): a staging marker of a
+// process that has ended, holding nothing fretwear did not write); a copy of the user's so named stays untouched.
 std::vector<fs::path> take_over_killed(const fs::path& dir) {
   std::vector<std::pair<fs::file_time_type, fs::path>> found;
   const fs::path parent = dir.parent_path();
@@ -229,8 +225,9 @@ std::vector<fs::path> take_over_killed(const fs::path& dir) {
       const std::string prefix = name + kind;
       if (entry.rfind(prefix, 0) != 0) continue;
       const std::string pid = entry.substr(prefix.size());
-      if (pid.empty() || pid == own || pid.find_first_not_of("0123456789") != std::string::npos) continue;
-      if (!ours(e.path())) continue;
+      if (pid.empty() || pid == own || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+        continue;
+      if (!killed_leftover(e.path(), std::stol(pid))) continue;  // a copy of the user's, or a sweep still running
       fs::path at = e.path();
       if (kind == std::string(".partial-")) {
         const fs::path renamed = parent / (name + ".resume-" + pid);
@@ -429,7 +426,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
         // Moved from a killed sweep's folder; copied from the last finished sweep's, which stays whole until this
         // one replaces it.
         std::vector<fs::path> sources = killed;
-        if (ours(result.dir)) sources.push_back(result.dir);
+        if (has_marker(result.dir)) sources.push_back(result.dir);
         for (const fs::path& source : sources) {
           const fs::path from = source / "runs" / run.name;
           json summary = complete_summary(from, scenes[k]);
@@ -533,7 +530,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   out->commit();
   for (const fs::path& k : killed) {
     std::error_code ec;
-    if (ours(k)) fs::remove_all(k, ec);
+    if (has_marker(k)) fs::remove_all(k, ec);
   }
   return result;
 }

@@ -138,3 +138,21 @@ TEST_CASE("--resume keeps the runs of the last finished sweep, saying so, and no
     CHECK_FALSE(resolved["effects"].contains("crack"));
   }
 }
+
+// A sweep folder of the user's named like a killed sweep's staging folder (a copy of a finished sweep, cp -r taking
+// its marker along) is not a killed sweep's: --resume neither takes its runs over nor removes it.
+TEST_CASE("--resume leaves a copy of the user's named like a killed sweep's folder untouched") {
+  Scratch s;
+  s.write("s.json", sweep_scene(s.work / "out").dump());
+  const Outcome first = s.fretwear(args("s.json", {"--jobs", "2", "-q"}));
+  REQUIRE_MESSAGE(first.exited(kDone), first.describe());
+  const fs::path copy = s.work / "out" / "sweep.partial-4000000";
+  fs::copy(s.work / "out" / "sweep", copy, fs::copy_options::recursive);
+  s.write("out/sweep.partial-4000000/mine.txt", "my notes\n");
+  fs::remove_all(s.work / "out" / "sweep");  // nothing of a finished sweep to keep either
+  const Snapshot before = fretwear::test::snapshot(copy);
+  const Outcome resumed = s.fretwear(args("s.json", {"--jobs", "2", "--resume"}));
+  REQUIRE_MESSAGE(resumed.exited(kDone), resumed.describe());
+  CHECK_MESSAGE(resumed.err.find("0 kept") != std::string::npos, resumed.err);
+  CHECK(fretwear::test::snapshot(copy) == before);
+}

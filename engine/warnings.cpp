@@ -47,6 +47,14 @@ long cells_advice(double cells) {
 // grid.window helps only where W is at least kNarrowerWindowGain times that (a given window much wider than the
 // contact); where it is not (a window fretwear chose, or zones far apart that any window must span) only more
 // grid.cells help, about min_cells W / width.
+// The interval [left, right] (m) in as many significant digits as tell its ends apart to three digits of its width:
+// a window 0.2 mm wide at x = 50 m needs eight ([49.9999, 50.0001], not [50, 50]).
+std::string interval_text(double left, double right) {
+  const double scale = std::max(std::abs(left), std::abs(right)), width = right - left;
+  const int digits = width > 0.0 && scale > 0.0 ? std::clamp(int(std::ceil(std::log10(scale / width))) + 3, 4, 17) : 4;
+  return fmt::format("[{:.{}g}, {:.{}g}]", left, digits, right, digits);
+}
+
 std::string resolution_advice(const NormalResult& n, double width, int min_cells) {
   const ContactSpan span = contact_span(n);
   const double left = span.left - kWindowMargin * span.b_first, right = span.right + kWindowMargin * span.b_last;
@@ -60,12 +68,12 @@ std::string resolution_advice(const NormalResult& n, double width, int min_cells
   if (W >= kNarrowerWindowGain * (right - left)) {
     const double spans = n.grid.n * width / (right - left);  // cells over the feature in that window
     if (spans >= min_cells)
-      return fmt::format("give a narrower grid.window around the contact, such as [{:.4g}, {:.4g}] m (over it the "
-                         "same grid.cells give it about {:.0f}), or more grid.cells ({} in this window)",
-                         left, right, spans, cells(cells_here));
-    return fmt::format("give a narrower grid.window around the contact, such as [{:.4g}, {:.4g}] m, and more "
+      return fmt::format("give a narrower grid.window around the contact, such as {} m (over it the same "
+                         "grid.cells give it about {:.0f}), or more grid.cells ({} in this window)",
+                         interval_text(left, right), spans, cells(cells_here));
+    return fmt::format("give a narrower grid.window around the contact, such as {} m, and more "
                        "grid.cells ({} there; {} in this window)",
-                       left, right, cells(cells_around), cells(cells_here));
+                       interval_text(left, right), cells(cells_around), cells(cells_here));
   }
   if (n.zones.size() > 1)
     return fmt::format("the window must span the contact's {} zones, from x = {:.4g} to {:.4g} m, so a narrower "

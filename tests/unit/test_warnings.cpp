@@ -47,6 +47,19 @@ TEST_CASE("a contact over a cell of a wide given window: a narrower window aroun
                       "the same grid.cells give it about 171), or more grid.cells (about 15000 in this window)"));
 }
 
+TEST_CASE("the advised window far from the origin has the digits that tell its ends apart, and resolves the contact") {
+  // The same contact at x = 50 m: to four digits the advice read [50, 50] m, a window of no width.
+  json j = base();
+  j["profile"]["offset_x"] = 50.0;
+  j["grid"]["window"] = {49.9, 50.1};
+  const auto found = messages(j, "contact_under_resolved");
+  REQUIRE(found.size() == 1);
+  CAPTURE(found[0]);
+  CHECK(has(found[0], "such as [49.9998385, 50.0001615] m (over it the same grid.cells give it about 171)"));
+  j["grid"]["window"] = {49.9998385, 50.0001615};  // as advised: accepted, and the contact resolved
+  CHECK(messages(j, "contact_under_resolved").empty());
+}
+
 TEST_CASE("a wide given window with too few cells even around the contact: both a narrower window and more cells") {
   // 16 cells: over 3a around the contact the zone would span 10.7, under 16; 24 there, 16 × 0.02 m / 2a = 1486 here.
   json j = base();

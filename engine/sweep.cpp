@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "engine/deferred_signals.hpp"
 #include "engine/folder.hpp"
@@ -282,6 +283,17 @@ json complete_summary(const fs::path& folder, const Scene& scene) {
   return summary;
 }
 
+// The codes of a run's warnings (summary.json's `warnings`), in their order, each once.
+std::vector<std::string> warning_codes(const json& summary) {
+  std::vector<std::string> codes;
+  if (!summary.is_object() || !summary.contains("warnings") || !summary["warnings"].is_array()) return codes;
+  for (const json& w : summary["warnings"]) {
+    const std::string code = w.value("code", "");
+    if (!code.empty() && std::find(codes.begin(), codes.end(), code) == codes.end()) codes.push_back(code);
+  }
+  return codes;
+}
+
 // The number of runs after which kKillAfterRunsVariable kills this process; 0: never.
 std::size_t kill_after_runs() {
   const char* v = std::getenv(kKillAfterRunsVariable);
@@ -487,8 +499,10 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
       if (left == 0) *options.progress << "\n";
       *options.progress << std::flush;
     } else {
-      *options.progress << fmt::format("  [{}/{}] {}: {}{}\n", kept + finished, result.runs.size(), r.name,
+      const std::vector<std::string> warned = warning_codes(r.summary);
+      *options.progress << fmt::format("  [{}/{}] {}: {}{}{}\n", kept + finished, result.runs.size(), r.name,
                                        o.status == 0 ? "done" : o.message,
+                                       warned.empty() ? "" : fmt::format(", warned: {}", fmt::join(warned, ", ")),
                                        o.rank >= 0 ? fmt::format(" (rank {})", o.rank) : "")
                         << std::flush;
     }
@@ -497,12 +511,13 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   if (!result.root) return result;
 
   // The table: the varied values, the status, the name, the summary's scalars (each numeric column named with its
-  // unit) and why a run failed.
+  // unit), the codes of the run's warnings (what of it the grid did not resolve, as its summary.json says) and why
+  // a run failed.
   std::string csv;
   for (const auto& v : variations) csv += csv_field(column_name(v.key)) + ",";
   csv += "status,name";
   for (const Column& c : kColumns) csv += fmt::format(",{}{}{}", c.key, *c.unit ? "_" : "", c.unit);
-  csv += ",message\n";
+  csv += ",warnings,message\n";
   json table = json::array(), units = json::object();
   for (const Column& c : kColumns)
     if (*c.unit) units[c.key] = c.unit;
@@ -517,7 +532,9 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
       csv += "," + (v.is_null() ? std::string() : csv_field(text(v), v.is_array()));
       row[c.key] = v;
     }
-    csv += "," + csv_field(r.message);
+    const std::vector<std::string> warned = warning_codes(r.summary);
+    csv += "," + csv_field(fmt::format("{}", fmt::join(warned, " "))) + "," + csv_field(r.message);
+    row["warnings"] = warned;
     if (!r.message.empty()) row["message"] = r.message;
     csv += "\n";
     table.push_back(row);

@@ -322,3 +322,36 @@ TEST_CASE("a run that does not converge: sweep.csv's status and message are thos
   CHECK(rows[2][1] == summary["status"]);
   CHECK(rows[2].back() == summary["message"]);
 }
+
+TEST_CASE("a sweep says which runs warned: stderr, sweep.csv's warnings column and sweep.json, as each run's summary") {
+  // 64 cells: at Q/fP = 0.2 the slip zones span under a cell each, at 0.9 the stick zone; at 0.5 both resolve.
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  json j = json::parse(read_file(scene));
+  j["grid"]["cells"] = 64;
+  s.write("w.json", j.dump());
+  const Outcome sweep = s.fretwear({"sweep", "w.json", "--vary", "load.Q.ratio=0.2,0.5,0.9"});
+  REQUIRE_MESSAGE(sweep.exited(kDone), sweep.describe());
+  const fs::path dir = s.work / "out" / "sweep";
+  const auto rows = csv_rows(dir / "sweep.csv", "timings.total_s");
+  REQUIRE(rows.size() == 4);
+  REQUIRE(rows[0][rows[0].size() - 2] == "warnings");
+  const json table = json::parse(read_file(dir / "sweep.json"))["runs"];
+  int warned = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const std::string name = rows[k][2];
+    CAPTURE(name);
+    const json summary = json::parse(read_file(dir / "runs" / name / "summary.json"));
+    std::vector<std::string> codes;
+    for (const json& w : summary["warnings"]) codes.push_back(w["code"].get<std::string>());
+    std::string joined;
+    for (const std::string& c : codes) joined += (joined.empty() ? "" : " ") + c;
+    CHECK(rows[k][rows[k].size() - 2] == joined);
+    CHECK(table[k - 1]["warnings"] == json(codes));
+    if (!codes.empty()) {
+      ++warned;
+      CHECK(sweep.err.find(name + ": done, warned: " + codes.front()) != std::string::npos);
+    }
+  }
+  CHECK(warned == 2);
+}

@@ -503,7 +503,9 @@ int main(int argc, char** argv) {
   auto* sweep_cmd = app.add_subcommand("sweep", "run the product of variations of a scene on the local cores, or "
                                                 "over the ranks of mpirun or srun");
   sweep_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
-  sweep_cmd->add_option("--vary", vary, "key=v1,v2,... (a dotted scene key, e.g. load.Q.ratio=0.2,0.4,0.6); repeat")
+  sweep_cmd->add_option("--vary", vary,
+                         "key=v1,v2,... (a dotted scene key, e.g. load.Q.ratio=0.2,0.4,0.6), or key=[JSON values] "
+                         "(e.g. grid.window=[[-2e-4,2e-4],[-3e-4,3e-4]]); repeat")
       ->required();
   sweep_cmd->add_option("--jobs", jobs, "runs at once (default: the number of cores; under mpirun or srun each rank "
                                      "runs one at a time)")

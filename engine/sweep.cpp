@@ -35,6 +35,15 @@ Variation parse_variation(const std::string& text) {
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
     throw InputError(fmt::format("--vary \"{}\": give key=v1,v2,... (a dotted scene key such as load.Q.ratio)", text));
   Variation v{text.substr(0, eq), {}};
+  // A JSON array lists values of any kind, lists and objects too: grid.window=[[-2e-4,2e-4],[-3e-4,3e-4]].
+  if (text[eq + 1] == '[') {
+    const json list = json::parse(text.substr(eq + 1), nullptr, false);
+    if (list.is_array()) {
+      if (list.empty()) throw InputError(fmt::format("--vary \"{}\": an empty list of values", text));
+      v.values.assign(list.begin(), list.end());
+      return v;
+    }
+  }
   std::stringstream values(text.substr(eq + 1));
   for (std::string item; std::getline(values, item, ',');) {
     if (item.empty()) throw InputError(fmt::format("--vary \"{}\": an empty value", text));

@@ -22,7 +22,8 @@ struct Variation {
   std::vector<nlohmann::json> values;
 };
 
-// Parses "key=v1,v2,..." (values as JSON numbers, booleans or bare words taken as strings). Throws InputError.
+// Parses "key=v1,v2,..." (values as JSON numbers, booleans or bare words taken as strings), or "key=[v1, v2, ...]", a
+// JSON array of the values, which may be lists and objects themselves. Throws InputError.
 Variation parse_variation(const std::string& text);
 
 // What one run came to, wherever it ran.

@@ -142,6 +142,25 @@ TEST_CASE("a sweep with an invalid variant names it and runs nothing") {
   CHECK_THROWS_AS(parse_variation("load.P"), InputError);
 }
 
+TEST_CASE("values given as a JSON array may be lists: a sweep over grid.window runs each window") {
+  const Variation windows = parse_variation("grid.window=[[-2e-4, 2e-4], [-3e-4, 3e-4]]");
+  REQUIRE(windows.values.size() == 2);
+  CHECK(windows.values[1] == json::parse("[-3e-4, 3e-4]"));
+  CHECK(parse_variation("load.Q.ratio=[0.2, 0.5]").values == std::vector<json>{json(0.2), json(0.5)});
+  CHECK_THROWS_AS(parse_variation("load.Q.ratio=[]"), InputError);
+  // Split at its commas, a list is no window: "[-2e-4" is refused as before.
+  CHECK(parse_variation("grid.window=[-2e-4,2e-4]").values.size() == 2);
+  Scratch scratch;
+  const fs::path scene = write_scene(scratch.path);
+  const SweepResult r = run_sweep(scene, {windows}, 1, nullptr);
+  REQUIRE(r.runs.size() == 2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    CAPTURE(r.runs[k].name);
+    REQUIRE(r.runs[k].status == 0);
+    CHECK(r.runs[k].summary["grid"]["window"] == windows.values[k]);
+  }
+}
+
 TEST_CASE("sweep.csv says each run's status in its summary.json's words, and why a failed run failed") {
   // summary.json says "completed"; a variant refused while solving writes no folder and no summary: its row says
   // "refused" and its message, which sweep.json holds too, CSV-quoted (commas, quotes and a line break read back).

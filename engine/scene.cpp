@@ -1618,7 +1618,15 @@ class SceneText {
                           "within the key's range)",
                           path(frames_.size(), next_part()), shortened(token), line_at(position));
     } else {
-      stop_ = fmt::format("{}: not valid JSON (UTF-8) at {}: {}", source_, path(frames_.size(), next_part()), e.what());
+      // NaN and Infinity, which some writers emit for floats, are no JSON numbers: say so, and what to give.
+      const std::size_t colon = token.find_last_of(":[,");  // the value's own text, after its key or comma
+      std::string value = token.substr(colon == std::string::npos ? 0 : colon + 1);
+      value.erase(0, value.find_first_not_of(" \t\r\n-"));
+      const bool not_number = !value.empty() && std::string("NnIi").find(value.front()) != std::string::npos;
+      stop_ = fmt::format("{}: not valid JSON (UTF-8) at {}: {}{}", source_, path(frames_.size(), next_part()), e.what(),
+                          not_number ? "; NaN and Infinity are not JSON numbers: give a finite number within the key's "
+                                       "range (\"Ranges\" in docs/SCENES.md)"
+                                     : "");
     }
     close_all();
     return false;

@@ -363,6 +363,19 @@ TEST_CASE("a number that overflows a double names its key's path and line, never
   CHECK(p[0].rfind("(top): 1000000000000000000000000000000000000... on line 2 overflows", 0) == 0);
 }
 
+TEST_CASE("NaN and Infinity, which are no JSON numbers, are refused at their key, saying what to give") {
+  for (const std::string v : {"NaN", "Infinity", "-Infinity", "nan"}) {
+    CAPTURE(v);
+    const std::vector<std::string> p = text_problems(good_text(",\n  \"Q\": {\"amplitude\": " + v + "}"));
+    REQUIRE(p.size() == 1);
+    CHECK(p[0].find("not valid JSON (UTF-8) at load.Q.amplitude") != std::string::npos);
+    CHECK(p[0].find("NaN and Infinity are not JSON numbers: give a finite number") != std::string::npos);
+  }
+  const std::vector<std::string> p = text_problems(good_text(",\n  \"Q\": {\"amplitude\": 1e5x}"));
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].find("NaN and Infinity") == std::string::npos);  // another error, another message
+}
+
 TEST_CASE("a key given twice names its full path and every line, with the scene's other problems") {
   std::vector<std::string> p = text_problems(good_text(",\n  \"P\": -1,\n  \"P\": 2e5"));
   REQUIRE(p.size() == 1);

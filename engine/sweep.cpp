@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -48,6 +50,30 @@ Variation parse_variation(const std::string& text) {
   for (std::string item; std::getline(values, item, ',');) {
     if (item.empty()) throw InputError(fmt::format("--vary \"{}\": an empty value", text));
     const json parsed = json::parse(item, nullptr, false);
+    if (parsed.is_discarded()) {  // a bare word is a string; what reads as a number that JSON cannot hold is refused
+      const std::string lower = [&] {
+        std::string l = item;
+        for (char& c : l) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return l;
+      }();
+      const std::string bare = lower.substr(lower.find_first_not_of("+-") == std::string::npos
+                                                ? lower.size()
+                                                : lower.find_first_not_of("+-"));
+      if (bare == "nan" || bare == "inf" || bare == "infinity")
+        throw InputError(fmt::format("--vary \"{}\": {} is not a JSON number; give finite numbers", text, item));
+      char* end = nullptr;
+      errno = 0;
+      const double number = std::strtod(item.c_str(), &end);
+      if (end == item.c_str() + item.size())
+        throw InputError(
+            std::isinf(number) && errno == ERANGE
+                ? fmt::format("--vary \"{}\": {} overflows a double; give a number between -1.8e308 and 1.8e308 (and "
+                              "within the key's range)",
+                              text, item)
+                : fmt::format("--vary \"{}\": {} is a number JSON does not write (no leading + or point, no "
+                              "hexadecimal); give it as {}",
+                              text, item, json(number).dump()));
+    }
     v.values.push_back(parsed.is_discarded() ? json(item) : parsed);
   }
   return v;

@@ -142,6 +142,23 @@ TEST_CASE("a sweep with an invalid variant names it and runs nothing") {
   CHECK_THROWS_AS(parse_variation("load.P"), InputError);
 }
 
+TEST_CASE("a varied value JSON cannot hold as a number is refused saying why, never taken for a word") {
+  auto message = [](const std::string& text) {
+    try {
+      parse_variation(text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(message("load.P=1e5,1e400").find("1e400 overflows a double") != std::string::npos);
+  CHECK(message("load.P=NaN").find("NaN is not a JSON number") != std::string::npos);
+  CHECK(message("load.P=-Infinity").find("-Infinity is not a JSON number") != std::string::npos);
+  CHECK(message("load.Q.ratio=.5").find(".5 is a number JSON does not write") != std::string::npos);
+  CHECK(message("load.Q.ratio=.5").find("give it as 0.5") != std::string::npos);
+  CHECK(message("load.Q.ratio=0.5,abc").empty());  // a word stays a word: the scene's check names the key
+}
+
 TEST_CASE("values given as a JSON array may be lists: a sweep over grid.window runs each window") {
   const Variation windows = parse_variation("grid.window=[[-2e-4, 2e-4], [-3e-4, 3e-4]]");
   REQUIRE(windows.values.size() == 2);

@@ -241,8 +241,8 @@ std::string fnv1a64(std::string_view bytes) {
 
 // A measured profile's CSV (SCENES.md, "Measured profiles"): a header row naming the two columns, then one row x, h
 // per point, x increasing strictly; blank lines and lines starting with '#' are skipped; a row's fields are
-// separated by a comma and may carry spaces. Reports each problem as "path: file, line n: what is wrong"; returns
-// false when there are any.
+// separated by a comma and may carry spaces, and double quotes around the whole field (no comma inside). Reports
+// each problem as "path: file, line n: what is wrong"; returns false when there are any.
 bool read_table_csv(std::string_view text, const std::string& path, const std::string& file, double x_scale,
                     double h_scale, ProfileSpec& s, std::vector<std::string>& problems) {
   constexpr std::size_t kMaxProblemsNamed = 10;
@@ -268,7 +268,12 @@ bool read_table_csv(std::string_view text, const std::string& path, const std::s
     std::vector<std::string_view> fields;
     for (std::size_t from = 0;;) {
       const std::size_t comma = line.find(',', from);
-      fields.push_back(trim(line.substr(from, comma == std::string_view::npos ? std::string_view::npos : comma - from)));
+      std::string_view field =
+          trim(line.substr(from, comma == std::string_view::npos ? std::string_view::npos : comma - from));
+      // A field in double quotes (RFC 4180, as spreadsheets export numbers and headers) is read without them.
+      if (field.size() >= 2 && field.front() == '"' && field.back() == '"')
+        field = trim(field.substr(1, field.size() - 2));
+      fields.push_back(field);
       if (comma == std::string_view::npos) break;
       from = comma + 1;
     }

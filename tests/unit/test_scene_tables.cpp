@@ -76,6 +76,23 @@ TEST_CASE("a table file in mm and um, relative to the scene's folder, reads as t
   CHECK(again.profile.h == s.profile.h);
 }
 
+TEST_CASE("a table file with its fields in double quotes, as spreadsheets export them, reads as without") {
+  Folder f;
+  std::string quoted = "\"x_mm\",\"h_um\"\n";
+  for (const std::string& row : {"-0.5,12.5", "0,0", "0.5,12.5"})
+    quoted += "\"" + row.substr(0, row.find(',')) + "\", \"" + row.substr(row.find(',') + 1) + "\"\n";
+  f.write("quoted.csv", quoted);
+  f.write("plain.csv", "x_mm,h_um\n-0.5,12.5\n0,0\n0.5,12.5\n");
+  auto table = [&](const std::string& file) {
+    return parse_scene(with_profile({{"type", "table"}, {"file", file}, {"x_unit", "mm"}, {"h_unit", "um"}}), "scene",
+                       f.dir)
+        .profile;
+  };
+  const ProfileSpec q = table("quoted.csv"), p = table("plain.csv");
+  CHECK(q.x == p.x);
+  CHECK(q.h == p.h);
+}
+
 TEST_CASE("the checksum of a resolved scene refuses a file that changed since") {
   Folder f;
   f.write("pad.csv", kPadCsv);

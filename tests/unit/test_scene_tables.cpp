@@ -79,7 +79,7 @@ TEST_CASE("a table file in mm and um, relative to the scene's folder, reads as t
 TEST_CASE("a table file with its fields in double quotes, as spreadsheets export them, reads as without") {
   Folder f;
   std::string quoted = "\"x_mm\",\"h_um\"\n";
-  for (const std::string& row : {"-0.5,12.5", "0,0", "0.5,12.5"})
+  for (const std::string row : {"-0.5,12.5", "0,0", "0.5,12.5"})
     quoted += "\"" + row.substr(0, row.find(',')) + "\", \"" + row.substr(row.find(',') + 1) + "\"\n";
   f.write("quoted.csv", quoted);
   f.write("plain.csv", "x_mm,h_um\n-0.5,12.5\n0,0\n0.5,12.5\n");

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -39,13 +40,24 @@ fs::path resolved(const fs::path& p) {
 
 constexpr const char* kMarkerFormat = "fretwear-folder";
 
-// A folder's marker as read: `kind` "results" or "staging"; `listed` when it lists its entries.
+// A folder's marker as read: `kind` "results" or "staging"; `listed` when it lists its entries; `checksums`, of the
+// listed files that have one (a marker written before checksums has none).
 struct Marker {
   json j = json::object();
   std::string kind = "results";
   bool listed = false;
   std::set<std::string> entries;
+  std::map<std::string, std::string> checksums;
 };
+
+// fnv1a64() of the file `p`'s bytes; empty when it cannot be read.
+std::string file_checksum(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return fnv1a64(bytes.str());
+}
 
 Marker read_marker(const fs::path& dir) {
   Marker m;
@@ -59,6 +71,9 @@ Marker read_marker(const fs::path& dir) {
     for (const auto& name : *e)
       if (name.is_string()) m.entries.insert(name.get<std::string>());
   }
+  if (const auto c = j.find("checksums"); c != j.end() && c->is_object())
+    for (const auto& [name, sum] : c->items())
+      if (sum.is_string()) m.checksums[name] = sum.get<std::string>();
   return m;
 }
 
@@ -68,11 +83,19 @@ bool write_marker(const fs::path& dir, const json& j) {
   return bool(out.flush());
 }
 
-json results_marker(const std::vector<std::string>& entries) {
+// The marker of the results folder `dir`, listing `entries` (list_entries()) and the checksum of each file among
+// them, by which a file edited since is told from the one fretwear wrote.
+json results_marker(const fs::path& dir, const std::vector<std::string>& entries) {
+  json checksums = json::object();
+  for (const std::string& e : entries)
+    if (e.back() != '/')
+      if (const std::string sum = file_checksum(dir / e); !sum.empty()) checksums[e] = sum;
   return {{"format", kMarkerFormat},
           {"kind", "results"},
-          {"note", "results fretwear wrote: fretwear may replace this folder while it holds only these entries"},
-          {"entries", entries}};
+          {"note", "results fretwear wrote: fretwear may replace this folder while it holds only these entries, as "
+                   "it wrote them"},
+          {"entries", entries},
+          {"checksums", checksums}};
 }
 
 // This process, as a staging folder's marker names it.
@@ -189,6 +212,12 @@ void walk_foreign(const fs::path& folder, const std::string& rel, const Marker& 
     const bool is_folder = fs::is_directory(fs::symlink_status(p, ec)), marked = is_folder && has_marker(p);
     const std::string path = rel + name + (is_folder ? "/" : "");
     bool own = m.listed ? m.entries.count(path) > 0 : written_by_name(rel, name, is_folder, marked);
+    // A file fretwear wrote and the user then changed is the user's now.
+    if (const auto sum = m.checksums.find(path); own && !is_folder && sum != m.checksums.end() &&
+                                                 file_checksum(p) != sum->second) {
+      found.push_back(shown + path + " (changed since fretwear wrote it)");
+      continue;
+    }
     if (top && marked && (name == subfolder(OutputCommand::convergence) || name == subfolder(OutputCommand::sweep)))
       own = true;  // a command's results kept in a run's folder
     if (!own) {
@@ -527,7 +556,7 @@ void OutputFolder::stage() const {
     int entries = 0;
     for (auto it = fs::directory_iterator(run_folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
       entries += it->path().filename() != staging_.filename();
-    if (entries == 0) write_marker(run_folder, results_marker({}));
+    if (entries == 0) write_marker(run_folder, results_marker(run_folder, {}));
   }
   if (ec || ::access(staging_.c_str(), W_OK) != 0 || !has_marker(staging_)) {
     const std::string why = ec ? ec.message() : "permission denied";
@@ -568,7 +597,7 @@ void OutputFolder::write_json(const std::string& file, const json& j) const { wr
 void OutputFolder::keep_staging() {
   std::vector<std::string> entries;
   list_entries(staging_, "", entries);
-  write_marker(staging_, results_marker(entries));
+  write_marker(staging_, results_marker(staging_, entries));
   kept_ = true;
 }
 
@@ -615,14 +644,14 @@ void OutputFolder::commit() {
       for (const OutputCommand other : {OutputCommand::convergence, OutputCommand::sweep})
         carry(old / subfolder(other), staging_ / subfolder(other));
     }
-    if (!write_marker(staging_, results_marker(entries)))
+    if (!write_marker(staging_, results_marker(staging_, entries)))
       throw failed(fmt::format("cannot write {} in {}", kOutputMarker, staging_.string()));
     fs::permissions(staging_, status.permissions(), fs::perm_options::replace, ec);  // the target's bits stay
     fs::rename(staging_, dir_, ec);
     if (ec) throw failed(fmt::format("cannot move the results into {}: {}", dir_.string(), ec.message()));
     if (earlier_results && foreign_entries(old).empty()) remove_folder(old);
   } else {
-    if (!write_marker(staging_, results_marker(entries)))
+    if (!write_marker(staging_, results_marker(staging_, entries)))
       throw failed(fmt::format("cannot write {} in {}", kOutputMarker, staging_.string()));
     fs::rename(staging_, dir_, ec);
     if (ec) throw failed(fmt::format("cannot move the results into {}: {}", dir_.string(), ec.message()));

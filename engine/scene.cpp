@@ -232,13 +232,6 @@ constexpr int kMaxProfileDepth = 8;
 constexpr std::pair<const char*, double> kTableUnits[] = {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}};
 const std::string kTableUnitWords = "\"m\", \"mm\", \"um\" or \"nm\"";
 
-// FNV-1a, 64 bits (Fowler, Noll and Vo), written "fnv1a64:" and 16 hex digits: the checksum of a table's file.
-std::string fnv1a64(std::string_view bytes) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
-  return fmt::format("fnv1a64:{:016x}", hash);
-}
-
 // A measured profile's CSV (SCENES.md, "Measured profiles"): a header row naming the two columns, then one row x, h
 // per point, x increasing strictly; blank lines and lines starting with '#' are skipped; a row's fields are
 // separated by a comma and may carry spaces, and double quotes around the whole field (no comma inside). Reports
@@ -1894,6 +1887,12 @@ json default_scene_json(const std::string& effect) {
   for (const auto& [name, value] : all.items())
     if (effect.empty() || name == effect || name == "tangential") j["effects"][name] = value;
   return parse_scene(j).to_json();
+}
+
+std::string fnv1a64(std::string_view bytes) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+  return fmt::format("fnv1a64:{:016x}", hash);
 }
 
 }  // namespace fretwear

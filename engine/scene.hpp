@@ -235,4 +235,8 @@ Scene load_scene(const std::filesystem::path& path);
 nlohmann::json default_scene_json(const std::string& effect = "");
 std::vector<std::string> default_effect_words();
 
+// FNV-1a, 64 bits (Fowler, Noll and Vo), written "fnv1a64:" and 16 hex digits: the checksum of a measured profile's
+// file, and of each file a results folder's marker lists.
+std::string fnv1a64(std::string_view bytes);
+
 }  // namespace fretwear

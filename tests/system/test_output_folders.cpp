@@ -652,6 +652,13 @@ TEST_CASE("output.dir refused when fretwear's folder holds entries it did not wr
          return Setup{};
        },
        "run", "mine/"},
+      {"a file fretwear wrote, then edited by the user",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         s.write("output/h/summary.json", read_file(s.work / "output" / "h" / "summary.json") + "\n");
+         return Setup{};
+       },
+       "run", "summary.json (changed since fretwear wrote it)"},
       {"a run folder a convergence study made, a file of the user's added",
        [](const Scratch& s) {
          s.write("s.json", scene_text(Setup{}));
@@ -683,6 +690,13 @@ TEST_CASE("output.dir accepted: fretwear's folder of either marker format holdin
          return Setup{};
        }},
   };
+  check_accepted({"a file fretwear wrote, rewritten with the same bytes",
+                  [](const Scratch& s) {
+                    run_before(s, "s.json", scene_text(Setup{}));
+                    s.write("output/h/summary.json", read_file(s.work / "output" / "h" / "summary.json"));
+                    return Setup{};
+                  }},
+                 "output/h");
   for (const auto& c : cases) check_accepted(c, "output/h");
   for (const char* command : {"convergence", "sweep"})
     check_accepted({"a marker of the first format",
@@ -710,6 +724,9 @@ TEST_CASE("the marker lists what the command wrote, and a rerun replaces exactly
     if (e.path().filename() != ".fretwear") present.push_back(e.path().filename().string());
   std::sort(present.begin(), present.end());
   CHECK(marker["entries"].get<std::vector<std::string>>() == present);
+  for (const std::string& file : present)  // every file with its checksum, by which an edit is told
+    if (fs::is_regular_file(out / file))
+      CHECK_MESSAGE(marker["checksums"].value(file, "").rfind("fnv1a64:", 0) == 0, file);
   CHECK(std::find(present.begin(), present.end(), "summary.json") != present.end());
 }
 
@@ -722,8 +739,11 @@ TEST_CASE("the convergence and sweep folders refuse entries fretwear did not wri
   const std::string run = first_run(out / "sweep");
   s.write("output/h/sweep/" + run + "/notes.txt", "the user's, in a run of the sweep\n");
   s.write("output/h/sweep/runs/mine.csv", "the user's, among the runs\n");
+  const std::string edited = "output/h/sweep/" + run + "/summary.json";
+  s.write(edited, read_file(s.work / edited) + " ");
   refused_untouched(s, command_line("convergence", "s.json"), {"convergence/", "notes.txt"});
-  refused_untouched(s, command_line("sweep", "s.json"), {run + "/notes.txt", "runs/mine.csv"});
+  refused_untouched(s, command_line("sweep", "s.json"),
+                    {run + "/notes.txt", "runs/mine.csv", run + "/summary.json (changed since fretwear wrote it)"});
   // The run replaces its own folder and carries the two over, the user's files in them as they were.
   const Snapshot before = s.snapshot();
   const Outcome r = s.fretwear(command_line("run", "s.json"));

@@ -212,6 +212,9 @@ void walk_foreign(const fs::path& folder, const std::string& rel, const Marker& 
     const bool is_folder = fs::is_directory(fs::symlink_status(p, ec)), marked = is_folder && has_marker(p);
     const std::string path = rel + name + (is_folder ? "/" : "");
     bool own = m.listed ? m.entries.count(path) > 0 : written_by_name(rel, name, is_folder, marked);
+    // A staging folder killed between its making and its marker's (a sweep's run, OutputFolder::stage()) is empty:
+    // nothing in it to lose.
+    if (!own && is_folder && !marked && staging_like(name) && fs::is_empty(p, ec)) own = true;
     // A file fretwear wrote and the user then changed is the user's now.
     if (const auto sum = m.checksums.find(path); own && !is_folder && sum != m.checksums.end() &&
                                                  file_checksum(p) != sum->second) {
@@ -429,7 +432,9 @@ bool has_marker(const fs::path& dir) {
 
 bool killed_leftover(const fs::path& dir, long pid) {
   std::error_code ec;
-  if (!fs::is_directory(fs::symlink_status(dir, ec)) || !has_marker(dir)) return false;
+  if (!fs::is_directory(fs::symlink_status(dir, ec))) return false;
+  // Killed between the folder's making and its marker's: empty, its process gone.
+  if (!has_marker(dir)) return fs::is_empty(dir, ec) && !ec && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
   const Marker m = read_marker(dir);
   if (m.kind != "staging" || m.j.value("pid", -1L) != pid || m.j.value("host", "") != this_process().host)
     return false;

@@ -76,7 +76,9 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const std::file
 // A command removes such a folder beside its target, left by a process that was killed, only when its marker says
 // "kind": "staging" with that pid, the host is this one, the process has ended (no process has the pid, or the one
 // that has it started at another time, or the host has booted since), and it holds nothing but what a command
-// writes (foreign_entries()). Anything else so named is left alone.
+// writes (foreign_entries()); or, killed between making the folder and its marker, when it is empty and no process
+// has that pid. An empty, unmarked folder so named inside a folder being judged counts as fretwear's
+// (foreign_entries()). Anything else so named is left alone.
 inline constexpr int kPidDigits = 7;
 inline constexpr const char* kStagingSuffix = ".partial-";
 // True when `name` ends like a staging folder: `.partial-` or `.old-` and one digit or more. Such names are kept for

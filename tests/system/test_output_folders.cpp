@@ -827,6 +827,19 @@ TEST_CASE("a killed command's staging folder is removed by the next, unless it h
     CHECK_MESSAGE(!fs::exists(leftover), leftover.string() << " is left");
   }
   {
+    // Killed between making its staging folder and writing the marker: empty, named for a process that cannot exist
+    // (a pid above Linux's largest, 2^22). Removed; one holding anything is left.
+    Scratch s;
+    s.write("s.json", base_scene().dump());
+    const fs::path empty = s.work / "output" / "h.partial-4999999", held = s.work / "output" / "h.partial-4999998";
+    fs::create_directories(empty);
+    write_file(held / "notes.txt", "the user's\n");
+    const Outcome r = s.fretwear({"run", "s.json", "-q"});
+    CHECK_MESSAGE(r.exited(kDone), r.describe());
+    CHECK_MESSAGE(!fs::exists(empty), empty.string() << " is left");
+    CHECK(read_file(held / "notes.txt") == "the user's\n");
+  }
+  {
     Scratch s;
     const fs::path leftover = killed_sweep(s);
     write_file(leftover / "runs" / "notes.txt", "the user's, in a killed sweep's folder\n");

@@ -85,6 +85,38 @@ TEST_CASE("a sweep killed after 5 of 12 runs is finished by --resume: complete r
   CHECK(runs == 12);
 }
 
+TEST_CASE("--resume keeps the complete runs of a sweep killed while a run's folder was being made, before its marker") {
+  // The run's staging folder exists, empty and unmarked, for an instant (OutputFolder::stage()): a kill then (under
+  // mpirun under load it happened) must not make the whole stopped sweep look like the user's. Made here by hand,
+  // named for a process that cannot exist (a pid above Linux's largest, 2^22).
+  Scratch s;
+  s.write("s.json", sweep_scene(s.work / "out").dump());
+  const Outcome killed = s.fretwear(args("s.json", {"--jobs", "1", "-q"}), {{"FRETWEAR_SWEEP_KILL_AFTER_RUNS", "3"}});
+  REQUIRE_MESSAGE(killed.signal == SIGKILL, killed.describe());
+  std::vector<fs::path> staging;
+  for (const auto& e : fs::directory_iterator(s.work / "out"))
+    if (e.path().filename().string().rfind("sweep.partial-", 0) == 0) staging.push_back(e.path());
+  REQUIRE(staging.size() == 1);
+  fs::create_directory(staging.front() / "runs" / "sw__load.Q.ratio_1.2__load.P_400000.0.partial-4999999");
+  const Outcome resumed = s.fretwear(args("s.json", {"--jobs", "2", "--resume"}));
+  REQUIRE_MESSAGE(resumed.exited(kDone), resumed.describe());
+  CHECK_MESSAGE(resumed.err.find("3 kept from the sweep that was stopped") != std::string::npos, resumed.err);
+  // A folder named so that holds anything is not taken for a staging folder: the stopped sweep is left alone.
+  Scratch t;
+  t.write("s.json", sweep_scene(t.work / "out").dump());
+  REQUIRE(t.fretwear(args("s.json", {"--jobs", "1", "-q"}), {{"FRETWEAR_SWEEP_KILL_AFTER_RUNS", "3"}}).signal ==
+          SIGKILL);
+  fs::path stopped;
+  for (const auto& e : fs::directory_iterator(t.work / "out"))
+    if (e.path().filename().string().rfind("sweep.partial-", 0) == 0) stopped = e.path();
+  REQUIRE(!stopped.empty());
+  write_file(stopped / "runs" / "x.partial-4999999" / "notes.txt", "the user's\n");
+  const Outcome again = t.fretwear(args("s.json", {"--jobs", "2", "--resume"}));
+  REQUIRE_MESSAGE(again.exited(kDone), again.describe());
+  CHECK_MESSAGE(again.err.find("0 kept") != std::string::npos, again.err);
+  CHECK(read_file(stopped / "runs" / "x.partial-4999999" / "notes.txt") == "the user's\n");
+}
+
 TEST_CASE("--resume keeps no run of another scene, and with nothing to resume runs every run") {
   Scratch s;
   json scene = sweep_scene(s.work / "out");

@@ -12,6 +12,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -70,21 +71,26 @@ bool run_gnuplot(const fs::path& dir, const std::string& script_file) {
   // results are being drawn.
   if (const char* pause = std::getenv("FRETWEAR_PLOT_PAUSE_MS"); pause && std::atoi(pause) > 0)
     std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(pause)));
+  // One log for all the scripts of a folder, each appending to it: a later script that runs clean keeps an earlier
+  // one's failure.
   const fs::path log_file = dir / "gnuplot.log";
-  const int log = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int log = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (log < 0) {
     std::cerr << fmt::format("fretwear: gnuplot.log could not be made in {} ({}); {} not drawn\n", dir.string(),
                              std::strerror(errno), script_file);
     return false;
   }
+  struct stat opened {};
+  const auto logged_before = ::fstat(log, &opened) == 0 ? std::uintmax_t(opened.st_size) : std::uintmax_t(0);
   pid_t pid = -1;
   const int failed = spawn_gnuplot(dir, script_file, log, pid);
   ::close(log);
   int status = 0;
   const bool waited = !failed && wait_for(pid, status);
   std::error_code ec;
-  const bool said_nothing = fs::file_size(log_file, ec) == 0;
-  if (said_nothing) fs::remove(log_file, ec);
+  const auto logged = fs::file_size(log_file, ec);
+  const bool said_nothing = ec || logged == logged_before;
+  if (!ec && logged == 0) fs::remove(log_file, ec);
   if (failed == ENOENT) {
     std::cerr << "fretwear: gnuplot not found; plots skipped (install it: apt-get install gnuplot-nox)\n";
     return false;

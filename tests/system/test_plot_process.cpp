@@ -266,6 +266,24 @@ TEST_CASE("SIGINT to a sweep's process group while gnuplot runs: no further run,
   REQUIRE_MESSAGE(wait_until([&] { return slow.all_ended(); }), "gnuplot still runs");
 
   std::vector<std::string> resume = args;
+TEST_CASE("a script's failure stays in gnuplot.log when later scripts run clean") {
+  // A gnuplot of the test's own: pressure.gp, the first script a run draws, fails with a message; the others succeed
+  // and print nothing. The log keeps the failure.
+  Scratch s;
+  const fs::path bin = s.root / "bin";
+  write_file(bin / "gnuplot", "#!/bin/sh\nif [ \"$1\" = pressure.gp ]; then echo 'the first script failed' >&2; "
+                              "exit 1; fi\nexit 0\n");
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  const char* path = std::getenv("PATH");
+  s.write("c.json", plotted_scene("output/c"));
+  const Outcome r = s.fretwear({"run", "c.json", "-q"}, {{"PATH", bin.string() + ":" + (path ? path : "")}});
+  CHECK_MESSAGE(r.exited(kDone), r.describe());
+  CHECK_MESSAGE(r.err.find("gnuplot failed on pressure.gp; see gnuplot.log") != std::string::npos, r.describe());
+  const fs::path log = s.work / "output" / "c" / "gnuplot.log";
+  REQUIRE(fs::exists(log));
+  CHECK(read_file(log).find("the first script failed") != std::string::npos);
+}
+
   resume.push_back("--resume");
   const Outcome resumed = s.fretwear(resume);
   CHECK_MESSAGE(resumed.exited(kDone), resumed.describe());

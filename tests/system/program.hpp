@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <initializer_list>
 #include <random>
@@ -86,6 +87,17 @@ inline std::string join(const std::vector<std::string>& lines) {
   std::string s;
   for (const auto& l : lines) s += (s.empty() ? "" : ", ") + l;
   return s.empty() ? "none" : s;
+}
+
+// The executable `name` in a folder of PATH, as the program finds it; empty when there is none.
+inline fs::path on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::stringstream folders(path ? path : "");
+  for (std::string folder; std::getline(folders, folder, ':');) {
+    const fs::path candidate = fs::path(folder.empty() ? "." : folder) / name;
+    if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) return candidate;
+  }
+  return {};
 }
 
 // A folder tree of the user's own for one case, with sentinel files the program must never touch:

@@ -1,6 +1,5 @@
 // The fretwear program as a user meets it: exit status, what is written and what is not.
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -206,7 +205,7 @@ TEST_CASE("a wear run writes wear_history.csv, profiles.csv and the wear plots")
   CHECK(profiles[0] == "cycles,x_m,gap0_m,wear_m,wear_pad_m,wear_specimen_m,p_Pa,slip_per_cycle_m");
   CHECK(profiles[1 + 5 * 256].rfind("inf,", 0) == 0);
   CHECK(profiles.back().rfind("inf,", 0) == 0);
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+  if (!on_path("gnuplot").empty()) {
     for (const char* f : {"wear.gp", "wear_depth.svg", "wear_depth.png", "wear_pressure.svg", "wear_pressure.png",
                           "wear_stick_zone.svg", "wear_stick_zone.png", "wear_area.svg", "wear_area.png"})
       CHECK_MESSAGE(fs::exists(dir / f), f);

@@ -26,17 +26,6 @@ using namespace fretwear::system_test;
 
 namespace {
 
-// The executable `name` in a folder of PATH; empty when there is none.
-fs::path on_path(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::stringstream folders(path ? path : "");
-  for (std::string folder; std::getline(folders, folder, ':');) {
-    const fs::path candidate = fs::path(folder.empty() ? "." : folder) / name;
-    if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) return candidate;
-  }
-  return {};
-}
-
 // Waits (at most `seconds`) until `ready` holds; false when it never did.
 bool wait_until(const std::function<bool()>& ready, double seconds = 30.0) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
@@ -266,6 +255,17 @@ TEST_CASE("SIGINT to a sweep's process group while gnuplot runs: no further run,
   REQUIRE_MESSAGE(wait_until([&] { return slow.all_ended(); }), "gnuplot still runs");
 
   std::vector<std::string> resume = args;
+  resume.push_back("--resume");
+  const Outcome resumed = s.fretwear(resume);
+  CHECK_MESSAGE(resumed.exited(kDone), resumed.describe());
+  CHECK_MESSAGE(resumed.err.find("1 kept from the sweep that was stopped") != std::string::npos, resumed.describe());
+  for (const auto& e : fs::directory_iterator(root / "sweep" / "runs")) check_plotted(e.path());
+  CHECK(fs::exists(root / "sweep" / "sweep_map.png"));
+  CHECK_MESSAGE(fretwear::test::leftovers(s.work).empty(), "left behind: " << join(fretwear::test::leftovers(s.work)));
+}
+
+// Without gnuplot (PATH holds an empty folder and the program's own): the scripts are written, nothing is drawn,
+// stderr says why, and the run and a sweep complete all the same.
 TEST_CASE("a script's failure stays in gnuplot.log when later scripts run clean") {
   // A gnuplot of the test's own: pressure.gp, the first script a run draws, fails with a message; the others succeed
   // and print nothing. The log keeps the failure.
@@ -284,17 +284,6 @@ TEST_CASE("a script's failure stays in gnuplot.log when later scripts run clean"
   CHECK(read_file(log).find("the first script failed") != std::string::npos);
 }
 
-  resume.push_back("--resume");
-  const Outcome resumed = s.fretwear(resume);
-  CHECK_MESSAGE(resumed.exited(kDone), resumed.describe());
-  CHECK_MESSAGE(resumed.err.find("1 kept from the sweep that was stopped") != std::string::npos, resumed.describe());
-  for (const auto& e : fs::directory_iterator(root / "sweep" / "runs")) check_plotted(e.path());
-  CHECK(fs::exists(root / "sweep" / "sweep_map.png"));
-  CHECK_MESSAGE(fretwear::test::leftovers(s.work).empty(), "left behind: " << join(fretwear::test::leftovers(s.work)));
-}
-
-// Without gnuplot (PATH holds an empty folder and the program's own): the scripts are written, nothing is drawn,
-// stderr says why, and the run and a sweep complete all the same.
 TEST_CASE("without gnuplot on PATH a run completes with no plots and says gnuplot was not found") {
   Scratch s;
   const fs::path empty = s.root / "empty";

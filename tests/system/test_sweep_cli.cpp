@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -69,7 +68,7 @@ TEST_CASE("a sweep of a scene with a life effect tabulates the lives and draws t
   CHECK(header.find("life.total_cycles") != std::string::npos);
   CHECK(header.find("life.fate") != std::string::npos);
   CHECK(row.find("failure") != std::string::npos);
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
+  if (!on_path("gnuplot").empty())
     CHECK(fs::exists(s.work / "out" / "sweep" / "sweep_life.png"));
 
   // Without plots the lives' data is written all the same, a row per run; only the script and the images are not.
@@ -132,7 +131,7 @@ TEST_CASE("a 3 x 3 sweep draws 3 x 3 cells that tile the plane, a regime map wit
   CHECK(gp.find("set ylabel 'load.P (N/m)'") != std::string::npos);
   CHECK(gp.find("set logscale y") != std::string::npos);
   CHECK(gp.find("'#440154'") != std::string::npos);  // viridis
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+  if (!on_path("gnuplot").empty()) {
     CHECK(fs::exists(dir / "sweep_regime.png"));
     CHECK(fs::exists(dir / "sweep_map.png"));
   }

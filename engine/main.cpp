@@ -133,12 +133,15 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
     for (const auto& z : list) out += fmt::format("{}[{:.6e}, {:.6e}]", out.empty() ? "" : ", ", v(z[0]), v(z[1]));
     return out + " m";
   };
+  // At a singular edge p_max is its cell's share of an unbounded pressure, which grows with the grid: said so.
+  const std::string p_max = fmt::format("p_max {:.6e} Pa{}", v(c["p_max"]),
+                                        c.value("p_max_singular", false) ? " at a singular edge (a grid measure)" : "");
   if (c["zones"].size() > 1)
-    std::cout << fmt::format("{}: contact in {} zones {}, p_max {:.6e} Pa ({})\n", scene.name, c["zones"].size(),
-                             zones(c["zones"]), v(c["p_max"]), result.normal.summary.brief());
+    std::cout << fmt::format("{}: contact in {} zones {}, {} ({})\n", scene.name, c["zones"].size(),
+                             zones(c["zones"]), p_max, result.normal.summary.brief());
   else
-    std::cout << fmt::format("{}: contact [{:.6e}, {:.6e}] m in 1 zone, p_max {:.6e} Pa ({})\n", scene.name,
-                             v(c["extent"][0]), v(c["extent"][1]), v(c["p_max"]), result.normal.summary.brief());
+    std::cout << fmt::format("{}: contact [{:.6e}, {:.6e}] m in 1 zone, {} ({})\n", scene.name, v(c["extent"][0]),
+                             v(c["extent"][1]), p_max, result.normal.summary.brief());
   if (verbose) {
     const auto& g = summary["grid"];
     std::cout << fmt::format("  grid: {} cells of {:.4e} m over [{:.6e}, {:.6e}] m (window from {})\n",

@@ -244,6 +244,22 @@ TEST_CASE("run reports each stage that ran, and --verbose adds how it was solved
   for (std::string line; std::getline(err, line);) CHECK_MESSAGE(line.rfind("warning: ", 0) == 0, line);
 }
 
+TEST_CASE("the report says a peak pressure at a singular edge is a grid measure, and a bounded one plainly") {
+  // A sharp flat punch's p_max is its corner cell's share of an unbounded pressure (summary: contact.p_max_singular).
+  Scratch s;
+  const std::string materials = R"("materials": {"both": {"E": 2e11, "nu": 0.3}}, "load": {"P": 2e5},)";
+  s.write("punch.json", R"({"name": "punch", )" + materials + R"( "profile": {"type": "flat", "b": 5e-4},
+    "grid": {"cells": 256}})");
+  s.write("hertz.json", R"({"name": "hertz", )" + materials + R"( "profile": {"type": "cylinder", "R": 0.01},
+    "grid": {"cells": 256}})");
+  const Outcome punch = s.fretwear({"run", "punch.json"});
+  REQUIRE_MESSAGE(punch.exited(kDone), punch.describe());
+  CHECK_MESSAGE(punch.out.find(" Pa at a singular edge (a grid measure) (") != std::string::npos, punch.describe());
+  const Outcome hertz = s.fretwear({"run", "hertz.json"});
+  REQUIRE_MESSAGE(hertz.exited(kDone), hertz.describe());
+  CHECK_MESSAGE(hertz.out.find("singular") == std::string::npos, hertz.describe());
+}
+
 TEST_CASE("a gross-slip wear run with each body in its own frame reports each body's scar on stdout") {
   // Sliding 8.8 µm each way on cells of 7.8 µm: the specimen's scar is worn in its own frame (engine/body_frames.hpp),
   // wider than the pad's by the stroke, and the line says both.

@@ -59,7 +59,7 @@ TEST_CASE("a malformed profile file: validate and run exit 2 naming the file and
   }
 }
 
-TEST_CASE("a profile file is read from the scene's folder; the resolved scene names it with its checksum") {
+TEST_CASE("a profile file is read from the scene's folder, and the resolved scene names it with its checksum") {
   Scratch s;
   s.write("scenes/pad.csv", cylinder_csv());
   json j = table_scene("pad.csv");

@@ -730,7 +730,7 @@ TEST_CASE("the marker lists what the command wrote, and a rerun replaces exactly
   CHECK(std::find(present.begin(), present.end(), "summary.json") != present.end());
 }
 
-TEST_CASE("the convergence and sweep folders refuse entries fretwear did not write; a run carries them over") {
+TEST_CASE("the convergence and sweep folders refuse entries fretwear did not write, and a run carries them over") {
   Scratch s;
   s.write("s.json", base_scene().dump());
   for (const char* command : {"run", "convergence", "sweep"}) command_before(s, command);

@@ -245,7 +245,7 @@ TEST_CASE("a sweep refuses a key varied twice, and keys inside one another, exit
   CHECK_FALSE(fs::exists(s.work / "out"));
 }
 
-TEST_CASE("--vary name and --vary output are refused: the sweep names and places its runs; all problems at once") {
+TEST_CASE("--vary name and --vary output are refused (the sweep names and places its runs), all problems at once") {
   Scratch s;
   const std::string scene = write_scene(s).string();
   const Outcome r = s.fretwear({"sweep", scene, "--vary", "name=a,b", "--vary", "output.dir=x,y", "--vary",
@@ -257,7 +257,7 @@ TEST_CASE("--vary name and --vary output are refused: the sweep names and places
   CHECK_FALSE(fs::exists(s.work / "out"));
 }
 
-TEST_CASE("a scene named with 128 characters sweeps, its run names cut to fit; a longer name is refused, saying so") {
+TEST_CASE("a scene named with 128 characters sweeps, its run names cut to fit, and a longer name is refused, saying so") {
   Scratch s;
   json scene = json::parse(read_file(write_scene(s)));
   scene["name"] = std::string(120, 'n') + "_long.xy";

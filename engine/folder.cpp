@@ -4,6 +4,8 @@
 #include <cerrno>
 #include <climits>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -11,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -615,7 +618,9 @@ void OutputFolder::commit() {
     keep_staging();
     return Error(fmt::format("{}; the results are in {}", why, staging_.string()));
   };
-  if (const auto status = fs::symlink_status(dir_, ec); fs::exists(status)) {
+  const auto status = fs::symlink_status(dir_, ec);
+  const bool exists = fs::exists(status);
+  if (exists) {
     // Checked before the command computed; the user may have changed it since.
     if (!fs::is_directory(status) || (!has_marker(dir_) && !fs::is_empty(dir_, ec))) {
       keep_staging();
@@ -623,9 +628,8 @@ void OutputFolder::commit() {
                                     "own; the results are in \"{}\"",
                                     dir_.string(), staging_.string())});
     }
-    const bool earlier_results = has_marker(dir_);
-    if (const auto foreign = earlier_results ? foreign_entries(dir_, carried_by(command_))
-                                             : std::vector<std::string>{};
+    if (const auto foreign = has_marker(dir_) ? foreign_entries(dir_, carried_by(command_))
+                                              : std::vector<std::string>{};
         !foreign.empty()) {
       keep_staging();
       throw SceneError({fmt::format("output.dir: \"{}\" came to hold {} while fretwear ran, which fretwear did not "
@@ -633,35 +637,69 @@ void OutputFolder::commit() {
                                     "results are in \"{}\"",
                                     dir_.string(), entry_list(foreign), staging_.string())});
     }
-    fs::path old = dir_;
-    old += fmt::format(".old-{}", ::getpid());
-    if (earlier_results) {
-      // Marked as a staging folder of this process before it takes a staging folder's name, so that a later command
-      // may remove it if this one is killed now, and nothing else so named.
-      write_marker(dir_, staging_marker(read_marker(dir_).j));
-      fs::rename(dir_, old, ec);
-    } else {
-      fs::remove(dir_, ec);  // empty
-    }
+  }
+  const bool earlier_results = exists && has_marker(dir_);
+  if (exists && !earlier_results) {
+    fs::remove(dir_, ec);  // empty
     if (ec) throw failed(fmt::format("cannot replace {}: {}", dir_.string(), ec.message()));
-    if (command_ == OutputCommand::run && earlier_results) {  // the other commands' results stay
-      lend_owner_all(old);
-      for (const OutputCommand other : {OutputCommand::convergence, OutputCommand::sweep})
-        carry(old / subfolder(other), staging_ / subfolder(other));
-    }
-    if (!write_marker(staging_, results_marker(staging_, entries)))
-      throw failed(fmt::format("cannot write {} in {}", kOutputMarker, staging_.string()));
-    fs::permissions(staging_, status.permissions(), fs::perm_options::replace, ec);  // the target's bits stay
+  }
+  // The new results are marked as results first: a command killed from here on leaves them whole, as results, in
+  // the staging folder.
+  if (!write_marker(staging_, results_marker(staging_, entries)))
+    throw failed(fmt::format("cannot write {} in {}", kOutputMarker, staging_.string()));
+  // The target's permission bits stay, set once nothing more is moved into the staging folder.
+  auto keep_bits = [&] {
+    if (exists) fs::permissions(staging_, status.permissions(), fs::perm_options::replace, ec);
+  };
+  if (!earlier_results) {
+    keep_bits();
     fs::rename(staging_, dir_, ec);
     if (ec) throw failed(fmt::format("cannot move the results into {}: {}", dir_.string(), ec.message()));
-    if (earlier_results && foreign_entries(old).empty()) remove_folder(old);
+    committed_ = true;
+    return;
+  }
+  // The earlier results are marked as a staging folder of this process before they take a staging folder's name,
+  // so that a later command may remove them if this one is killed then; a run's folder hands over the other
+  // commands' results it keeps.
+  const json earlier = read_marker(dir_).j;
+  write_marker(dir_, staging_marker(earlier));
+  std::vector<OutputCommand> kept;
+  if (command_ == OutputCommand::run) kept = {OutputCommand::convergence, OutputCommand::sweep};
+  lend_owner_all(dir_);
+  for (const OutputCommand other : kept) carry(dir_ / subfolder(other), staging_ / subfolder(other));
+  keep_bits();
+  auto undo = [&](const std::string& why) {
+    lend_owner_all(staging_);
+    for (const OutputCommand other : kept) carry(staging_ / subfolder(other), dir_ / subfolder(other));
+    write_marker(dir_, earlier);
+    return failed(fmt::format("cannot move the results into {}: {}", dir_.string(), why));
+  };
+  // One step where the file system can: the new results take dir's place and the earlier ones the staging
+  // folder's, so that no instant leaves dir missing. Else two renames, through <dir>.old-<pid>.
+  // Tests only: FRETWEAR_KILL_AFTER_REPLACING, a kill (SIGKILL) as soon as the first step has moved dir.
+  auto killed_here = [] {
+    if (std::getenv("FRETWEAR_KILL_AFTER_REPLACING")) std::raise(SIGKILL);
+  };
+  fs::path replaced = staging_;
+  if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) == 0) {
+    killed_here();
   } else {
-    if (!write_marker(staging_, results_marker(staging_, entries)))
-      throw failed(fmt::format("cannot write {} in {}", kOutputMarker, staging_.string()));
+    const int e = errno;
+    if (e != EINVAL && e != ENOSYS) throw undo(std::strerror(e));
+    replaced = dir_;
+    replaced += fmt::format(".old-{}", ::getpid());
+    fs::rename(dir_, replaced, ec);
+    if (ec) throw undo(ec.message());
+    killed_here();
     fs::rename(staging_, dir_, ec);
-    if (ec) throw failed(fmt::format("cannot move the results into {}: {}", dir_.string(), ec.message()));
+    if (ec) {
+      std::error_code back;
+      fs::rename(replaced, dir_, back);
+      throw undo(ec.message());
+    }
   }
   committed_ = true;
+  if (foreign_entries(replaced).empty()) remove_folder(replaced);
 }
 
 }  // namespace fretwear

@@ -21,7 +21,7 @@ namespace fretwear {
 //   "kind": "results": a folder of results, with "entries": every path fretwear wrote in it, relative to it,
 //     '/'-separated, a folder with a trailing '/' (a subfolder holding a marker of its own is listed, not entered:
 //     its marker lists its entries); fretwear replaces the folder only while it holds nothing else;
-//   "kind": "staging": a folder a command is writing (or, named <dir>.old-<pid>, replacing), with the process doing
+//   "kind": "staging": a folder a command is writing (or, the earlier results, replacing), with the process doing
 //     it: "pid", "host" (its host name), "boot_id" (the kernel's, /proc/sys/kernel/random/boot_id) and
 //     "start_time" (the process's start in clock ticks after boot, field 22 of /proc/<pid>/stat; -1 unknown); a
 //     replaced folder keeps its "entries".
@@ -109,7 +109,9 @@ class OutputFolder {
   void write(const std::string& file, const std::string& content) const;
   void write_json(const std::string& file, const nlohmann::json& j) const;
   // Replaces dir by the staging folder, its marker listing what the command wrote, carrying over the kept
-  // subfolders of the previous dir, which is removed only while it holds nothing fretwear did not write. Throws
+  // subfolders of the previous dir, which is removed only while it holds nothing fretwear did not write. The two
+  // are exchanged in one step (renameat2, RENAME_EXCHANGE; two renames where the file system lacks it), so that
+  // dir never goes missing. Throws
   // SceneError naming output.dir when dir has changed since it was checked (an entry of the user's in it, or no
   // longer a folder of fretwear's), with nothing of it touched; Error when the file system refuses a step. Either
   // way the results stay in the staging folder, marked as results, and the message names it.

@@ -849,6 +849,34 @@ TEST_CASE("a killed command's staging folder is removed by the next, unless it h
   }
 }
 
+TEST_CASE("a run killed as its results replace the earlier ones leaves results in place, and the next removes the rest") {
+  // FRETWEAR_KILL_AFTER_REPLACING kills the run as soon as its first step has moved the folder it replaces: one step
+  // that exchanges the two, so output/h never goes missing.
+  Scratch s;
+  json scene = base_scene();
+  s.write("s.json", scene.dump());
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}).exited(kDone));
+  const fs::path out = s.work / "output" / "h";
+  const std::string earlier = read_file(out / "summary.json");
+  scene["load"]["P"] = 2e5;
+  s.write("s.json", scene.dump());
+  const Outcome killed = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_KILL_AFTER_REPLACING", "1"}});
+  REQUIRE_MESSAGE(killed.signal == SIGKILL, killed.describe());
+  REQUIRE_MESSAGE(fs::exists(out / "summary.json"), "output/h is missing after the kill");
+  const json now = json::parse(read_file(out / "summary.json"));
+  CHECK(now["contact"]["load"].get<double>() > 1.5e5);  // this run's P = 2e5 N/m, not the earlier 1e5
+  CHECK(json::parse(read_file(out / ".fretwear"))["kind"] == "results");
+  std::vector<fs::path> left;
+  for (const auto& e : fs::directory_iterator(s.work / "output"))
+    if (e.path().filename() != "h") left.push_back(e.path());
+  REQUIRE(left.size() == 1);  // the earlier results, marked as the killed process's staging folder
+  CHECK(read_file(left.front() / "summary.json") == earlier);
+  CHECK(json::parse(read_file(left.front() / ".fretwear"))["kind"] == "staging");
+  const Outcome next = s.fretwear({"run", "s.json", "-q"});
+  CHECK_MESSAGE(next.exited(kDone), next.describe());
+  CHECK_MESSAGE(!fs::exists(left.front()), left.front().string() << " is left");
+}
+
 TEST_CASE("a staging folder is removed only when its marker names a process of this host that has ended") {
   // Markers made here name this test's process (alive): as it is, it is kept; with another start time it names a
   // process that has ended (its pid taken since), and is removed; on another host it is kept.

@@ -136,14 +136,17 @@ KeyUnit key_unit(const std::string& key) {
   const std::string last = last_part(key);
   if (key == "load.P" || key == "load.Q.amplitude") return {"N/m", "N_m"};
   if (key == "load.bulk_stress.amplitude" || ends_with(key, ".sigma_f")) return {"Pa", "Pa"};
-  if (key == "load.delta" || ends_with(key, ".a_initial") || ends_with(key, ".a_final")) return {"m", "m"};
+  if (key == "load.delta" || ends_with(key, ".a_initial") || ends_with(key, ".a_final") || key == "grid.window" ||
+      key == "effects.crack.lengths")
+    return {"m", "m"};
   if (key.rfind("materials.", 0) == 0 && last == "E") return {"Pa", "Pa"};
   if (key.rfind("profile.", 0) == 0) {
     if (last == "angle_deg") return {"°", "deg"};
     for (const char* length : {"R", "a", "b", "amplitude", "wavelength", "offset_x"})
       if (last == length) return {"m", "m"};
   }
-  if (key == "effects.wear.k" || key == "effects.wear.alpha") return {"1/Pa", "per_Pa"};
+  for (const char* coefficient : {"k", "alpha", "k_pad", "k_specimen", "alpha_pad", "alpha_specimen"})
+    if (key == std::string("effects.wear.") + coefficient) return {"1/Pa", "per_Pa"};
   return {};
 }
 

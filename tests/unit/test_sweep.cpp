@@ -177,6 +177,11 @@ TEST_CASE("values given as a JSON array may be lists: a sweep over grid.window r
     REQUIRE(r.runs[k].status == 0);
     CHECK(r.runs[k].summary["grid"]["window"] == windows.values[k]);
   }
+  // The table names the column with its unit, as every dimensional varied key.
+  std::ifstream table(scratch.path / "out" / "sweep" / "sweep.csv");
+  std::string header;
+  std::getline(table, header);
+  CHECK_MESSAGE(header.rfind("grid.window_m,", 0) == 0, header);
 }
 
 TEST_CASE("sweep.csv says each run's status in its summary.json's words, and why a failed run failed") {

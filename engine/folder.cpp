@@ -494,6 +494,13 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path&
                                    json(dir.string()).dump(-1, ' ', false, json::error_handler_t::replace)));
     return problems;
   }
+  // A NUL byte ends a path for every call of the file system, which would take the part before it for the folder.
+  if (dir.native().find('\0') != std::string::npos) {
+    problems.push_back(fmt::format("output.dir: {} holds a NUL byte, where the file system would end the path; give "
+                                   "the path without it",
+                                   json(dir.string()).dump()));
+    return problems;
+  }
   fs::path last = dir;
   if (!last.has_filename()) last = last.parent_path();  // "output/x/" names the folder x
   if (last.filename() == "." || last.filename() == ".." || dir.empty()) {

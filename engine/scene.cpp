@@ -234,7 +234,8 @@ const std::string kTableUnitWords = "\"m\", \"mm\", \"um\" or \"nm\"";
 
 // A measured profile's CSV (SCENES.md, "Measured profiles"): a header row naming the two columns, then one row x, h
 // per point, x increasing strictly; blank lines and lines starting with '#' are skipped; a row's fields are
-// separated by a comma and may carry spaces, and double quotes around the whole field (no comma inside). Reports
+// separated by a comma and may carry spaces, and double quotes around the whole field (no comma inside); a UTF-8
+// byte order mark before the first row is skipped. Reports
 // each problem as "path: file, line n: what is wrong"; returns false when there are any.
 bool read_table_csv(std::string_view text, const std::string& path, const std::string& file, double x_scale,
                     double h_scale, ProfileSpec& s, std::vector<std::string>& problems) {
@@ -250,6 +251,9 @@ bool read_table_csv(std::string_view text, const std::string& path, const std::s
     return v.substr(first, v.find_last_not_of(" \t\r") - first + 1);
   };
   const Bound x_span = position("a position x"), h_span = position("a height h");
+  // A UTF-8 byte order mark (as some spreadsheets write it) is not part of the first row, which else would not read
+  // as two numbers and pass for a header.
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   bool header = false;
   std::size_t line_no = 0, x_line = 0;
   for (std::size_t at = 0; at < text.size();) {
@@ -403,7 +407,27 @@ void parse_table(Reader& r, ProfileSpec& s, const std::filesystem::path& scene_d
       std::error_code ec;
       const std::filesystem::path absolute = std::filesystem::absolute(full, ec).lexically_normal();
       s.source.file = (ec ? full : absolute).string();
-      points_ok = read_table_file(full, r.at("file"), *scale[0], *scale[1], s, r.problems());
+      // The resolved scene records the file's full path as JSON text, which is UTF-8 only: a scene in a folder whose
+      // name is not would solve and then fail to write it. A NUL byte would end the path for the file system.
+      const bool utf8 = [&] {
+        try {
+          (void)json(s.source.file).dump();
+          return true;
+        } catch (const json::type_error&) {
+          return false;
+        }
+      }();
+      if (given.native().find('\0') != std::string::npos)
+        r.problem(r.at("file"), fmt::format("{} holds a NUL byte, where the file system would end the path; give the "
+                                            "path without it",
+                                            describe(*file)));
+      else if (!utf8)
+        r.problem(r.at("file"),
+                  fmt::format("{} is read from {}, which is not UTF-8 text as scene.resolved.json must record it; "
+                              "move the scene and its table into a folder whose path is UTF-8",
+                              describe(*file), json(s.source.file).dump(-1, ' ', false, json::error_handler_t::replace)));
+      else
+        points_ok = read_table_file(full, r.at("file"), *scale[0], *scale[1], s, r.problems());
       if (points_ok && checksum) {
         if (!checksum->is_string())
           r.problem(r.at("checksum"), fmt::format("{} is {}; give the file's \"fnv1a64:...\" of a resolved scene",
@@ -1336,6 +1360,10 @@ void parse_output(Reader& top, Scene& s, std::vector<std::string>& problems) {
     if (r.find("dir"))  // optional: output/<name> below
       if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
         if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
+        if (dir->find('\0') != std::string::npos)  // the file system would take the part before it for the folder
+          r.problem("output.dir", fmt::format("{} holds a NUL byte, where the file system would end the path; give "
+                                              "the path without it",
+                                              json(*dir).dump()));
         s.output_dir = *dir;
       }
     s.plots = r.boolean("plots", true).value_or(true);

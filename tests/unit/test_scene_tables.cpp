@@ -134,6 +134,7 @@ TEST_CASE("a malformed table file: one problem naming the key, the file, the lin
       {"a header only", "x,h\n", "line 1: has no data rows"},
       {"empty", "", "is empty"},
       {"no header", "0,1\n1,2\n2,3\n", "line 1: holds two numbers, not a header"},
+      {"no header after a byte order mark", "\xEF\xBB\xBF" "0,1\n1,2\n2,3\n", "line 1: holds two numbers, not a header"},
       {"three columns", "x,h\n0,1,2\n1,2\n2,3\n", "line 2: has 3 columns"},
       {"infinity", "x,h\n0,1\n1,inf\n2,3\n", "line 3: \"inf\" in column h is not a finite number"},
       {"beyond 100 m", "x,h\n0,1\n1,1e6\n", "line 3: h = 1000 m is not allowed"},
@@ -164,6 +165,35 @@ TEST_CASE("a table file that is missing, a folder, or too large is refused witho
     REQUIRE(p.size() == 1);
     CHECK(p[0].find(said) != std::string::npos);
   }
+}
+
+TEST_CASE("a table file after a byte order mark reads as without it") {
+  Folder f;
+  f.write("pad.csv", kPadCsv);
+  f.write("pad_bom.csv", "\xEF\xBB\xBF" + kPadCsv);
+  const auto read = [&](const char* file) {
+    return parse_scene(with_profile({{"type", "table"}, {"file", file}, {"x_unit", "mm"}, {"h_unit", "um"}}), "scene",
+                       f.dir);
+  };
+  const Scene a = read("pad.csv"), b = read("pad_bom.csv");
+  CHECK(b.profile.x == a.profile.x);
+  CHECK(b.profile.h == a.profile.h);
+  CHECK(b.profile.x.size() == 11);
+}
+
+TEST_CASE("a table file whose path holds a NUL byte, or whose folder's path is not UTF-8, is refused up front") {
+  Folder f;
+  const fs::path odd = f.dir / "caf\xE9";  // Latin-1, not UTF-8
+  fs::create_directories(odd);
+  std::ofstream(odd / "pad.csv", std::ios::binary) << kPadCsv;
+  const auto p = problems(with_profile({{"type", "table"}, {"file", "pad.csv"}}), odd);
+  REQUIRE(p.size() == 1);
+  CHECK_MESSAGE(p[0].rfind("profile.file: \"pad.csv\" is read from ", 0) == 0, p[0]);
+  CHECK_MESSAGE(p[0].find("not UTF-8") != std::string::npos, p[0]);
+  f.write("pad.csv", kPadCsv);
+  const auto q = problems(with_profile({{"type", "table"}, {"file", std::string("pad.csv\0x", 9)}}), f.dir);
+  REQUIRE(q.size() == 1);
+  CHECK_MESSAGE(q[0].find("holds a NUL byte") != std::string::npos, q[0]);
 }
 
 TEST_CASE("one problem per mistake: a wrong word does not make its dependent keys unknown, missing or misplaced") {

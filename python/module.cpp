@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -76,11 +77,24 @@ fs::path path_argument(py::handle arg) {
   return fs::path(py::module_::import("os").attr("fsencode")(arg).cast<py::bytes>().cast<std::string>());
 }
 
+// The path quoted as JSON writes it ("a\u0000b"), its bytes that are not UTF-8 shown as U+FFFD: what a problem shows of
+// a path the file system cannot take.
+std::string quoted(const fs::path& path) {
+  return json(path.string()).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// A NUL byte ends a path for every call of the file system, which would take the part before it for the path and so
+// reach another file or folder: a path holding one is refused, with this said of it.
+bool holds_nul(const fs::path& path) { return path.native().find('\0') != std::string::npos; }
+constexpr const char* kHoldsNul =
+    "holds a NUL byte, where the file system would end the path; give the path without it";
+
 SceneArgument scene_argument(py::handle arg) {
   const py::module_ os = py::module_::import("os");
   try {
     if (py::isinstance<py::str>(arg) || py::isinstance<py::bytes>(arg) || py::isinstance(arg, os.attr("PathLike"))) {
       const fs::path path = path_argument(arg);
+      if (holds_nul(path)) raise_scene_error({fmt::format("{}: {}", quoted(path), kHoldsNul)});
       return {load_scene(path), path};
     }
     if (!py::isinstance<py::dict>(arg))
@@ -175,35 +189,43 @@ Result run(py::handle scene_arg, py::handle output_arg) {
   control.stop_now = check;
   RunResult result;
   json summary;
-  std::string failure;  // a ConvergenceError's or an InputError's message, raised with the GIL held
+  std::string failure;  // a ConvergenceError's message, raised with the GIL held
   bool converged = true;
+  // Problems found once solving has begun, raised with the GIL held as a SceneError: the output folder's when it
+  // cannot be written after all (a SceneError of the engine's, whose problems are taken as they are, not its message
+  // that already says "the scene is invalid"), or the engine's InputError (a worn contact grown to the window's end).
+  std::vector<std::string> refused;
   {
     py::gil_scoped_release release;
     try {
-      result = Simulation(scene).run(&control);
-      if (!check.pending_->has_value()) {
-        result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());
-        if (output) {
+      try {
+        result = Simulation(scene).run(&control);
+        if (!check.pending_->has_value()) {
+          result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());
+          if (output) {
+            OutputFolder out(scene.output_dir, OutputCommand::run);
+            const DeferredStopSignals hold;  // the results are written whole, or not at all
+            summary = write_results(scene, result, out);
+            out.commit();
+          } else {
+            summary = make_summary(scene, result);
+            summary["plots"] = json::array();  // none drawn
+          }
+        }
+      } catch (const ConvergenceError& e) {
+        converged = false;
+        failure = e.what();
+        if (output) {  // a folder that cannot be written after all is the SceneError below, as on the command line
           OutputFolder out(scene.output_dir, OutputCommand::run);
-          const DeferredStopSignals hold;  // the results are written whole, or not at all
-          summary = write_results(scene, result, out);
+          const DeferredStopSignals hold;
+          write_not_converged(scene, e, checked.warnings, out);
           out.commit();
-        } else {
-          summary = make_summary(scene, result);
-          summary["plots"] = json::array();  // none drawn
         }
       }
-    } catch (const ConvergenceError& e) {
-      converged = false;
-      failure = e.what();
-      if (output) {
-        OutputFolder out(scene.output_dir, OutputCommand::run);
-        const DeferredStopSignals hold;
-        write_not_converged(scene, e, checked.warnings, out);
-        out.commit();
-      }
-    } catch (const InputError& e) {  // found while solving: a worn contact grown to the window's end
-      failure = e.what();
+    } catch (const SceneError& e) {
+      refused = e.problems();
+    } catch (const InputError& e) {
+      refused = {e.what()};
     } catch (const StopRequested&) {  // the pending exception below says why
     }
   }
@@ -211,8 +233,8 @@ Result run(py::handle scene_arg, py::handle output_arg) {
     (*check.pending_)->restore();
     throw py::error_already_set();
   }
+  if (!refused.empty()) raise_scene_error(refused);
   if (!converged) raise_convergence_error(failure);
-  if (!failure.empty()) raise_scene_error({failure});
   // The preflight's warnings were given before the run.
   warn(std::vector<Warning>(result.warnings.begin() + std::ptrdiff_t(checked.warnings.size()), result.warnings.end()));
 
@@ -291,13 +313,23 @@ A valid scene's warnings before solving (a wear run estimated past an hour, a gr
 end) are given as FretwearWarning, as run gives them.
 )doc";
 
-const char* kDefaultsDoc = R"doc(defaults(effect=None) -> dict
+// defaults' docstring, its numbers and its effects those of the default scene itself.
+std::string defaults_doc() {
+  const json d = default_scene_json();
+  const json& both = d.at("materials").at("both");
+  std::string effects;
+  for (const std::string& e : default_effect_words()) effects += (effects.empty() ? "\"" : "\", \"") + e;
+  return fmt::format(R"doc(defaults(effect=None) -> dict
 
-The complete default scene (PHYSICS.md's Hertz contact: a cylinder of radius 0.05 m on a flat, steel on steel)
-with every effect and every key written out, as `fretwear defaults` prints it; or with one effect and the load
-cycle it needs: effect is "normal", "tangential", "wear", "stress", "crack" or "life". Units as in docs/SCENES.md
-(m, N/m, Pa). Raises ValueError for another effect.
-)doc";
+The complete default scene, PHYSICS.md's Hertz contact (a cylinder of radius R = {:g} m on a flat under P = {:g} N/m,
+both bodies of E = {:g} Pa, nu = {:g}), with every effect and every key written out, as `fretwear defaults` prints
+it; or, given an effect, with that effect and the load cycle it needs. The effects:
+    {}"
+Units as in docs/SCENES.md (m, N/m, Pa). Raises ValueError for another effect.
+)doc",
+                     d.at("profile").at("R").get<double>(), d.at("load").at("P").get<double>(),
+                     both.at("E").get<double>(), both.at("nu").get<double>(), effects);
+}
 
 // A table's column names, in the CSV's order.
 std::vector<std::string> column_names(const Table& t) {
@@ -320,6 +352,13 @@ PYBIND11_MODULE(fretwear, m) {
 run(scene, output=None) runs a scene in memory; validate(scene) lists its problems; defaults(effect=None) gives the
 complete default scene. Errors: SceneError (with .problems), ConvergenceError. Units are SI throughout.)doc";
   m.attr("__version__") = fretwear::kVersion;
+
+  // Every function-local static that calls into Python is initialised here, while the import holds the GIL and no
+  // other thread can call the module yet. Initialised later, by the first run that makes an array, such a static
+  // would hang two threads running at once: the first to reach it holds its guard while the import inside it
+  // (numpy.core.multiarray, for numpy's C API) hands the GIL on, and the second, holding the GIL, waits on the guard.
+  // pybind11's npy_api::get() is that static (every py::array_t made in tables.cpp reaches it).
+  py::detail::npy_api::get();
 
   g_scene_error = PyErr_NewExceptionWithDoc(
       "fretwear.SceneError",
@@ -344,7 +383,9 @@ complete default scene. Errors: SceneError (with .problems), ConvergenceError. U
 columns as the file, each column named by its header without the unit ("p_Pa" is p) and in that unit (SI; the
 critical plane's angle in degrees). An empty CSV value is NaN. The arrays are read-only (every access hands out
 the same one): table.x.copy() gives an array to change. print(table) lists the columns with their units;
-table.units maps each to its unit; pandas.DataFrame(table.to_dict()) makes a data frame.)doc")
+table.units maps each to its unit; pandas.DataFrame(table.to_dict()) makes a data frame. Iterating a table gives
+its column names, as a dict's keys ("p" in table, dict(table)); len(table) is the number of rows. A table pickles
+(its arrays read-only again when unpickled).)doc")
       .def("__getattr__",
            [](const Table& t, const std::string& name) -> py::object {
              for (const Column& c : t.columns())
@@ -365,6 +406,9 @@ table.units maps each to its unit; pandas.DataFrame(table.to_dict()) makes a dat
              for (std::string& c : column_names(t)) names.push_back(std::move(c));
              return names;
            })
+      .def(
+          "__iter__", [](const Table& t) { return py::iter(py::cast(column_names(t))); },
+          "the column names, in the CSV's order, as a dict's keys")
       .def("keys", &column_names, "the column names, in the CSV's order")
       .def_property_readonly("columns", &column_names, "the column names, in the CSV's order")
       .def_property_readonly(
@@ -384,7 +428,9 @@ table.units maps each to its unit; pandas.DataFrame(table.to_dict()) makes a dat
              return d;
            },
            "{column: numpy array}, in the CSV's order (pandas.DataFrame(table.to_dict()))")
-      .def("__repr__", &Table::describe);
+      .def("__repr__", &Table::describe)
+      .def(py::pickle([](const Table& t) { return t.state(); },
+                      [](const py::tuple& state) { return Table::from_state(state); }));
 
   std::string result_doc = R"doc(What fretwear.run returns.
 
@@ -408,12 +454,34 @@ One attribute per CSV file, None when the run does not produce it:
                           return d;
                         },
                         "{name: Table} of the tables the run produced")
-                    .def("__repr__", [](const Result& r) {
-                      std::string names;
-                      for (const auto& [name, t] : r.tables) names += (names.empty() ? "" : ", ") + name;
-                      return fmt::format("<fretwear.Result of scene \"{}\": {}>",
-                                         std::string(py::str(r.summary["scene"])), names);
-                    });
+                    .def("__repr__",
+                         [](const Result& r) {
+                           std::string names;
+                           for (const auto& [name, t] : r.tables) names += (names.empty() ? "" : ", ") + name;
+                           return fmt::format("<fretwear.Result of scene \"{}\": {}>",
+                                              std::string(py::str(r.summary["scene"])), names);
+                         })
+                    // (summary, scene, output, {name: Table}): a Result pickles whole, so that a process of a pool
+                    // can return one.
+                    .def(py::pickle(
+                        [](const Result& r) {
+                          py::dict tables;
+                          for (const auto& [name, t] : r.tables) tables[py::str(name)] = t;
+                          return py::make_tuple(r.summary, r.scene, r.output, tables);
+                        },
+                        [](const py::tuple& state) {
+                          if (state.size() != 4) throw std::runtime_error("a pickled fretwear.Result holds 4 items");
+                          Result r;
+                          r.summary = state[0];
+                          r.scene = state[1];
+                          r.output = state[2];
+                          for (const auto& [name, t] : state[3].cast<py::dict>()) {
+                            if (!py::isinstance<Table>(t))
+                              throw std::runtime_error("a pickled fretwear.Result holds a table that is not one");
+                            r.tables[name.cast<std::string>()] = py::reinterpret_borrow<py::object>(t);
+                          }
+                          return r;
+                        }));
   for (const auto& [name, line] : table_names()) {
     const std::string key = name;
     result.def_property_readonly(
@@ -426,6 +494,6 @@ One attribute per CSV file, None when the run does not produce it:
     options.disable_function_signatures();
     m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), kRunDoc);
     m.def("validate", &validate, py::arg("scene"), py::arg("output") = py::none(), kValidateDoc);
-    m.def("defaults", &defaults, py::arg("effect") = py::none(), kDefaultsDoc);
+    m.def("defaults", &defaults, py::arg("effect") = py::none(), defaults_doc().c_str());
   }
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
@@ -57,6 +58,27 @@ const Column& Table::column(const std::string& name) const {
   std::string names;
   for (const Column& c : columns_) names += (names.empty() ? "" : ", ") + c.name;
   throw py::key_error(fmt::format("{} has no column \"{}\"; its columns: {}", file_, name, names));
+}
+
+pybind11::tuple Table::state() const {
+  py::list columns;
+  for (const Column& c : columns_) columns.append(py::make_tuple(c.name, c.unit, c.meaning, c.values));
+  return py::make_tuple(file_, meaning_, columns);
+}
+
+Table Table::from_state(const pybind11::tuple& state) {
+  if (state.size() != 3) throw std::runtime_error("a pickled fretwear.Table holds 3 items");
+  Table t(state[0].cast<std::string>(), state[1].cast<std::string>());
+  for (const auto& item : state[2].cast<py::list>()) {
+    const auto c = item.cast<py::tuple>();
+    if (c.size() != 4) throw std::runtime_error("a pickled fretwear.Table's column holds 4 items");
+    const auto values = py::array::ensure(c[3]);
+    if (!values || values.ndim() != 1) throw std::runtime_error("a pickled fretwear.Table's column is a 1-D array");
+    t.check_rows(std::size_t(values.size()));
+    t.columns_.push_back(
+        {c[0].cast<std::string>(), c[1].cast<std::string>(), c[2].cast<std::string>(), frozen(values)});
+  }
+  return t;
 }
 
 std::string Table::describe() const {

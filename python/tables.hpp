@@ -35,6 +35,12 @@ class Table {
   const Column& column(const std::string& name) const;  // throws pybind11::key_error naming the columns
   std::string describe() const;  // the file, its meaning, and each column with its unit and meaning
 
+  // Pickling: (file, meaning, [(name, unit, meaning, values), ...]), and the table again from that, each array
+  // read-only again (an unpickled array is writeable). from_state throws std::runtime_error for a state of another
+  // shape, and std::logic_error for columns of different lengths.
+  pybind11::tuple state() const;
+  static Table from_state(const pybind11::tuple& state);
+
  private:
   void check_rows(std::size_t n);
   std::string file_, meaning_;

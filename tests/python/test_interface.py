@@ -1,8 +1,12 @@
 """The module's interface: errors that name their JSON paths, nothing written without `output`, the folder written
 with it as the command line writes it, defaults and the version as the command line gives them, documented units."""
+import concurrent.futures
+import copy
 import json
+import multiprocessing
 import os
 import pathlib
+import pickle
 
 import numpy
 import pytest
@@ -194,3 +198,85 @@ def test_help_names_the_units():
     assert "json.path" in fretwear.validate.__doc__
     assert "m^2" in fretwear.Result.wear_history.__doc__
     assert "Pa" in repr(fretwear.run(example("hertz_normal")).contact)
+
+
+def test_defaults_doc_gives_the_default_scenes_own_numbers():
+    scene = fretwear.defaults()
+    doc = fretwear.defaults.__doc__
+    assert f"radius R = {scene['profile']['R']:g} m" in doc
+    assert f"P = {scene['load']['P']:g} N/m" in doc
+    assert f"E = {scene['materials']['both']['E']:g} Pa, nu = {scene['materials']['both']['nu']:g}" in doc
+    for effect in scene["effects"]:
+        assert f'"{effect}"' in doc
+
+
+def test_a_nul_byte_in_a_path_is_refused_before_anything_is_computed(in_empty_folder):
+    # The file system would take the part before the NUL for the path: "a" here, another folder than the one named.
+    scene = example("hertz_normal", **{"grid.cells": 128})
+    problem = ('output.dir: "a\\u0000b" holds a NUL byte, where the file system would end the path; give the path '
+               "without it")
+    for output in ("a\x00b", b"a\x00b", pathlib.Path("a\x00b")):
+        assert fretwear.validate(scene, output=output) == [problem]
+        with pytest.raises(fretwear.SceneError) as caught:
+            fretwear.run(scene, output=output)
+        assert caught.value.problems == [problem]
+        assert str(caught.value) == "the scene is invalid:\n  " + problem
+    # A scene file's path likewise: the file "s" is not read for "s\0.json".
+    (in_empty_folder / "s").write_text(json.dumps(scene))
+    with pytest.raises(fretwear.SceneError) as caught:
+        fretwear.run("s\x00.json")
+    assert caught.value.problems == ['"s\\u0000.json": holds a NUL byte, where the file system would end the path; '
+                                     "give the path without it"]
+    assert fretwear.validate(b"s\x00.json") == caught.value.problems
+    assert files_under(in_empty_folder) == ["s"]
+
+
+def test_a_folder_that_cannot_be_written_after_all_is_one_problem_said_once(in_empty_folder):
+    # A file of the caller's where the results are staged (docs/SCENES.md, "Output folders") is found only when they
+    # are written: its problem is raised as it is, once.
+    staging = in_empty_folder / f"out.partial-{os.getpid()}"
+    staging.write_text("mine")
+    with pytest.raises(fretwear.SceneError) as caught:
+        fretwear.run(example("hertz_normal", **{"grid.cells": 128}), output="out")
+    (problem,) = caught.value.problems
+    assert problem.startswith(f'output.dir: "{staging.name}" exists and is not a staging folder')
+    assert str(caught.value) == "the scene is invalid:\n  " + problem
+    assert files_under(in_empty_folder) == [staging.name] and staging.read_text() == "mine"
+
+
+def test_a_table_iterates_over_its_column_names_as_a_dict_does():
+    table = fretwear.run(example("hertz_normal", **{"grid.cells": 128})).contact
+    assert list(table) == table.columns == table.keys() == ["x", "gap0", "p", "gap", "p_closed_form"]
+    assert all(name in table for name in table)
+    assert dict(table).keys() == table.to_dict().keys() and dict(table)["p"] is table.p
+    assert len(table) == 128  # the rows
+
+
+def same_result(a, b):
+    assert a.summary == b.summary and a.scene == b.scene and a.output == b.output
+    assert sorted(a.tables) == sorted(b.tables)
+    for name, table in a.tables.items():
+        other = b.tables[name]
+        assert repr(table) == repr(other) and table.units == other.units and table.file == other.file
+        for column in table:
+            numpy.testing.assert_array_equal(table[column], other[column])
+            assert table[column].dtype == other[column].dtype and not other[column].flags.writeable
+
+
+def run_elsewhere(scene):
+    """fretwear.run for a pool of processes, which takes a function by its module and name: pybind11's functions
+    (fretwear.run itself) do not pickle."""
+    return fretwear.run(scene)
+
+
+def test_a_result_pickles_and_a_pool_of_processes_can_return_one(tmp_path):
+    scene = example("dissimilar_cycle", **{"grid.cells": 256})  # a label column (loop.phase) among the tables
+    result = fretwear.run(scene, output=tmp_path / "out")
+    same_result(result, pickle.loads(pickle.dumps(result)))
+    same_result(result, copy.deepcopy(result))
+    with pytest.raises(ValueError, match="read-only"):
+        pickle.loads(pickle.dumps(result.loop)).P[0] = 0.0
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        theirs = pool.submit(run_elsewhere, scene).result()
+    assert without_timings(theirs.summary) == without_timings(dict(result.summary, plots=[]))
+    numpy.testing.assert_array_equal(theirs.cycle.q_top, result.cycle.q_top)

@@ -19,6 +19,7 @@ namespace fretwear {
 namespace {
 constexpr int kMaxEvaluations = 200;  // force-control solves per displacement-controlled increment
 constexpr double kMirrorTolerance = 1e-6;  // the odd part of a gap taken as even, relative to its largest value
+constexpr double kSteadyTolerance = 1e-6;  // a cycle repeats the one before (Run::repeated), relative to the traction
 }  // namespace
 
 std::string IncrementalSlipOptions::validate() const {
@@ -32,6 +33,7 @@ std::string IncrementalSlipOptions::validate() const {
     return fmt::format("coupling_tolerance = {} is outside (0, 1e-2]", coupling_tolerance);
   if (settling_increments < 0 || settling_increments % 4 != 0)
     return fmt::format("settling_increments = {} must be 0 or a positive multiple of 4", settling_increments);
+  if (steady_cycles_max < 0) return fmt::format("steady_cycles_max = {} must be 0 or more", steady_cycles_max);
   if (max_coupling_sweeps < 1)
     return fmt::format("max_coupling_sweeps = {} must be at least 1", max_coupling_sweeps);
   if (auto msg = normal.validate(); !msg.empty()) return "normal." + msg;
@@ -484,6 +486,21 @@ std::string where(int cycle, int k) {
 class IncrementalSlipSolver::Run {
  public:
   IncrementalResult result() { return std::move(result_); }
+  // True when the last cycle's traction at its top and its bottom repeats the cycle's before it, each cell within
+  // kSteadyTolerance of the larger top traction: the march has reached its steady cycle.
+  bool repeated() const {
+    const auto& c = result_.cycles;
+    if (c.size() < 2) return false;
+    const CycleResult &a = c[c.size() - 2], &b = c.back();
+    if (a.q_top.size() != b.q_top.size() || a.q_bottom.size() != b.q_bottom.size()) return false;
+    double scale = 0.0, change = 0.0;
+    for (std::size_t i = 0; i < b.q_top.size(); ++i)
+      scale = std::max({scale, std::abs(a.q_top[i]), std::abs(b.q_top[i])});
+    for (std::size_t i = 0; i < b.q_top.size(); ++i) change = std::max(change, std::abs(b.q_top[i] - a.q_top[i]));
+    for (std::size_t i = 0; i < b.q_bottom.size(); ++i)
+      change = std::max(change, std::abs(b.q_bottom[i] - a.q_bottom[i]));
+    return change <= kSteadyTolerance * scale;
+  }
 
  protected:
   Run(const IncrementalSlipSolver& solver, const ContactState& contact, const ReferenceDatum* datum,
@@ -696,8 +713,21 @@ IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& conta
     throw InputError("incremental slip: the coupled solve needs the initial gap on the grid");
   HistoryRun run(*this, contact, load, g0, datum, coupling);
   run.first_loading();
-  for (int cycle = 1; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
-  return run.result();
+  int cycle = 1;
+  for (; cycle <= options_.cycles; ++cycle) run.cycle(cycle);
+  // A history may reach its steady cycle only after several (one that shakes down slips in its first cycle alone):
+  // cycles are marched until one repeats the cycle before it, at most steady_cycles_max in all. A cycle marched at
+  // settling_increments is not compared with one at increments_per_cycle.
+  const bool settles_coarser = options_.cycles > 1 && options_.settling_increments > 0 &&
+                               options_.settling_increments != options_.increments_per_cycle;
+  const auto comparable = [&] { return !settles_coarser || cycle - 2 >= options_.cycles; };
+  bool repeated = true;
+  if (options_.steady_cycles_max > 0)
+    while (!(repeated = comparable() && run.repeated()) && cycle <= options_.steady_cycles_max) run.cycle(cycle++);
+  IncrementalResult result = run.result();
+  result.repeated = repeated;
+  result.cycles_marched = cycle - 1;
+  return result;
 }
 
 IncrementalSlipSolver::Run::Run(const IncrementalSlipSolver& solver, const ContactState& contact,

@@ -141,6 +141,11 @@ struct IncrementalSlipOptions {
   int increments_per_cycle = 40;  // load steps over +Q → −Q → +Q (the first loading 0 → Q takes a quarter of
                                   // them); a multiple of 4 and ≥ 4, so that Q = 0 and ±Q are increment ends
   int cycles = 1;                 // steady cycles after the first loading; ≥ 1
+  // solve_history() only: after those, cycles until the last one repeats the one before it at the same increments
+  // (the traction at the top and the bottom of both within 1e-6 of the largest top traction), at most this many
+  // cycles in all; 0: exactly `cycles`. A history reaches its steady cycle only after several cycles where the first
+  // slips and the later ones do not (shakedown); IncrementalResult::repeated says whether it did.
+  int steady_cycles_max = 10;
   // Increments of the cycles before the last one (the first loading takes a quarter of them): 0 for
   // increments_per_cycle; else a multiple of 4 (see above: only the last cycle is reported).
   int settling_increments = 0;
@@ -205,6 +210,10 @@ struct IncrementalResult {
   // The last cycle's reloading half was the mirror image of its unloading half (mirror_half_cycle, on a symmetric
   // contact): increment_energy, increment_Q and increment_shift then hold the marched increments only.
   bool mirrored = false;
+  // solve_history() with steady_cycles_max > 0: the last cycle repeated the one before it (false: the cap came
+  // first, and the last cycle may not be the steady one).
+  bool repeated = true;
+  int cycles_marched = 0;  // cycles after the first loading
   std::vector<double> increment_energy;  // h Σ q Δw of every increment, the first loading's included (J/m)
   // Q at the end of every increment (N/m) and its rigid shift λ (m; the multiplier of the load, work-conjugate to Q:
   // over a closed cycle ∮ Q dλ is the energy dissipated, when the elastic operator is symmetric).

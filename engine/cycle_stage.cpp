@@ -259,7 +259,8 @@ CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const Cycl
                              "; the scene asks for route \"analogy\": use \"auto\" or \"incremental\"");
   }
   // The incremental route: the cycle marched in load increments with the traction as memory (reverse slip, and
-  // whatever the analogy cannot do). The steady cycle is the second, after the first loading and one full cycle.
+  // whatever the analogy cannot do). The steady cycle of a constant amplitude is the first after the first loading
+  // (the second for β ≠ 0); a history's is the first that repeats the one before it.
   IncrementalSlipOptions options;
   options.increments_per_cycle = scene.tangential->increments;
   if (plan.dissimilar()) options.cycles = 2;  // β ≠ 0: the first cycle after the first loading is not yet the steady one
@@ -276,6 +277,7 @@ CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const Cycl
     stage.route += fmt::format(" [beta = {:.4g}: {} coupling sweeps over {} increments, at most {}]", plan.beta,
                                r.n_coupling_sweeps, r.n_increments, r.max_coupling_sweeps);
   stage.result = r.cycles.back();
+  if (history) stage.history_cycles = r.cycles_marched, stage.history_steady = r.repeated;
   if (plan.dissimilar() || history) stage.p_top = r.p_top, stage.p_bottom = r.p_bottom;
   if (history && !r.p_top.empty()) {  // σ from the solver's ε = σ (κ₂ + 1)/(8 μ₂), linear in σ
     const double strain_per_stress = model.pair.bulk_strain(1.0);
@@ -353,6 +355,10 @@ nlohmann::json summarise_cycle(const Scene& scene, const CycleStage& st) {
     };
     cycle["p_max_top"] = largest(st.p_top);
     cycle["p_max_bottom"] = largest(st.p_bottom);
+  }
+  if (st.history_cycles > 0) {  // a load history: the cycles marched to the steady one, and whether one repeated
+    cycle["history_cycles"] = st.history_cycles;
+    cycle["history_steady"] = st.history_steady;
   }
   if (scene.control == LoadControl::displacement) {
     cycle["delta"] = *scene.delta;

@@ -53,6 +53,10 @@ struct CycleStage {
     int half_increments = 0;  // the increments per cycle of the second march
   };
   std::vector<HistoryEnergy> history_energy;
+  // A load history: the cycles marched after the first loading until one repeated the one before it (the steady
+  // cycle reported; IncrementalSlipOptions::steady_cycles_max), and whether one did within that cap.
+  int history_cycles = 0;
+  bool history_steady = true;
 };
 
 // The displacement datum's reference points (contact/reference_datum.hpp): below the centre of the contact under P

@@ -131,6 +131,25 @@ void history_increments(const Scene& scene, const CycleStage& cycle, std::vector
   }
 }
 
+// A load history marched to IncrementalSlipOptions::steady_cycles_max cycles without one repeating the one before
+// it: the cycle reported (and worn with) may not be the steady one.
+void history_unsteady(const RunResult& result, std::vector<Warning>& out) {
+  const long worn = result.wear ? result.wear->unsteady_history_responses : 0;
+  if (result.cycle->history_steady && worn == 0) return;
+  std::string what;
+  if (!result.cycle->history_steady)
+    what = fmt::format("the load history's cycle did not repeat the one before it within {} cycles, so the cycle "
+                       "reported may not be the steady one",
+                       result.cycle->history_cycles);
+  if (worn > 0)
+    what += fmt::format("{}{} of the wear run's cycle responses did not either, so its wear rate may be that of a "
+                        "cycle still settling",
+                        what.empty() ? "" : "; ", worn);
+  out.push_back({"history_unsteady",
+                 what + " (the traction at the top and the bottom of the cycle within 1e-6 of its largest; "
+                        "docs/METHODS.md, \"Load histories\")"});
+}
+
 // Each contact zone's slip zones at the top of the cycle: between its ends and the stick zones inside it.
 void slip_resolution(const NormalResult& n, const CycleStage& cycle, std::vector<Warning>& out) {
   const CycleResult& c = cycle.result;
@@ -349,6 +368,7 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
   if (result.cycle) {
     slip_resolution(result.normal, *result.cycle, out);
     history_increments(scene, *result.cycle, out);
+    history_unsteady(result, out);
     mindlin_missed(scene, result, out);
   }
   if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out), crack_quadrature(result, out);

@@ -417,6 +417,7 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   cycle_iterations += r.n_iterations;
   ++coupled_responses_;
   if (r.mirrored) ++mirrored_responses_;
+  if (!r.repeated) ++unsteady_responses_;
   cycle_ = r.cycles.back();
   Q_top_ = cycle_.Q_peak;
   if (cycle_.slip_travelled.empty())  // Q ≥ f P at some point of the cycle under force control: the bodies slide
@@ -504,6 +505,7 @@ json IncrementalContactResponse::save() const {
   j["q_top"] = q_top_;
   j["coupled_responses"] = coupled_responses_;
   j["mirrored_responses"] = mirrored_responses_;
+  j["unsteady_responses"] = unsteady_responses_;
   j["lagged_responses"] = lagged_responses_;
   j["analogy_responses"] = analogy_responses_;
   j["analogy_gave_up"] = analogy_gave_up_;
@@ -531,6 +533,7 @@ void IncrementalContactResponse::restore(const json& j) {
   if (j.contains("q_top")) j.at("q_top").get_to(q_top_);
   coupled_responses_ = j.value("coupled_responses", 0L);
   mirrored_responses_ = j.value("mirrored_responses", 0L);
+  unsteady_responses_ = j.value("unsteady_responses", 0L);
   lagged_responses_ = j.value("lagged_responses", 0L);
   analogy_responses_ = j.value("analogy_responses", 0L);
   analogy_gave_up_ = j.value("analogy_gave_up", std::string());

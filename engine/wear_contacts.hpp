@@ -256,6 +256,8 @@ class IncrementalContactResponse : public WearContact {
   // (mirror_half_cycle, contact/incremental_slip.hpp), and those that took the lagged correction.
   long coupled_responses() const { return coupled_responses_; }
   long mirrored_responses() const { return mirrored_responses_; }
+  // Responses to a load history whose march did not reach a cycle that repeats the one before it.
+  long unsteady_responses() const { return unsteady_responses_; }
   long lagged_responses() const { return lagged_responses_; }
   // Similar bodies under displacement control: responses answered by the analogy (header). Why the analogy (this
   // one's, or the lag's) stopped answering where it did: empty while it answers every one.
@@ -297,6 +299,7 @@ class IncrementalContactResponse : public WearContact {
   CycleResult cycle_;
   std::vector<double> q_top_;  // the shear at the top of the cycle of the last response (Pa)
   long coupled_responses_ = 0, mirrored_responses_ = 0, lagged_responses_ = 0, analogy_responses_ = 0;
+  long unsteady_responses_ = 0;
   double Q_top_ = 0.0;            // the tangential load at the top of the last response's cycle (N/m)
   std::string analogy_gave_up_;
   // The lagged coupling's uncoupled cycle (null: every response coupled): the analogy's, or under a load history

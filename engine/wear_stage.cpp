@@ -879,6 +879,7 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
                 {"unconverged_steps", stage.unconverged_steps},
                 {"implicit_solves", stage.implicit_solves},
                 {"responses", stage.responses},
+                {"unsteady_history_responses", stage.unsteady_history_responses},
                 {"explicit_max_step", stage.explicit_max_step},
                 {"cycle_solves", cycle_solves},
                 {"cycle_iterations", cycle_iterations},
@@ -904,6 +905,7 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     stage.unconverged_steps = resumed->at("unconverged_steps").get<int>();
     stage.implicit_solves = resumed->at("implicit_solves").get<int>();
     stage.responses = resumed->at("responses").get<int>();
+    stage.unsteady_history_responses = resumed->value("unsteady_history_responses", 0L);
     stage.explicit_max_step = resumed->at("explicit_max_step").get<double>();
     cycle_solves = resumed->at("cycle_solves").get<long>();
     cycle_iterations = resumed->at("cycle_iterations").get<long>();
@@ -1009,6 +1011,7 @@ void run_blocks(const Scene& scene, const Model& model, const CycleStage& cycle,
     stage.cycles_reached = part.cycles_reached;
     if (part.resumed_from) stage.resumed_from = part.resumed_from;
     cycle_solves += contact.cycle_solves, cycle_iterations += contact.cycle_iterations;
+    stage.unsteady_history_responses += contact.unsteady_responses();
     implicit_solves += contact.implicit_solves, implicit_iterations += contact.implicit_iterations;
     if (failure || part.interrupted) {
       stage.interrupted = part.interrupted;
@@ -1115,6 +1118,7 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
       const long coupled = incremental->coupled_responses(), lagged = incremental->lagged_responses();
       stage.coupling = WearStage::Coupling{coupled + lagged, coupled, incremental->mirrored_responses(), lagged};
     }
+    if (incremental) stage.unsteady_history_responses = incremental->unsteady_responses();
     if (first.rate_max == 0.0) return;  // nothing slips: nothing wears
     scars(model, effect, stage);
     stage.mean_iterations_cycle = double(contact->cycle_iterations) / double(std::max(1L, contact->cycle_solves));

@@ -119,6 +119,83 @@ TEST_CASE("load history: a constant Q while P drops and recovers slips the edges
   CHECK(still.cycles.back().slip_max == 0.0);
 }
 
+TEST_CASE("load history: a history that shakes down is reported, and worn, by its steady cycle") {
+  // The history of the test above, through the whole run: its first cycle slips the edges; the second slips
+  // nothing but starts from another residual traction, so differs from the first; the third repeats the second
+  // (shakedown). The steady cycle the stage reports, the third, dissipates nothing, and 10^7 cycles of it wear
+  // nothing; the first cycle's energy, worn instead, would wear as much as a constant cycle at Q/fP = 0.2 does in
+  // about a fifth of the cycles. Two periods of the history as one give the same steady cycle.
+  const double P = 1e5, Q = 0.4 * test::kHertzF * P;
+  Scene s = test::hertz_wear(P, 0.0, 1e7, 1024);
+  s.Q_ratio.reset();
+  s.history = {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}};
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
+                        {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}}};
+  IncrementalSlipOptions first_only;
+  first_only.steady_cycles_max = 0;
+  const IncrementalResult first = IncrementalSlipSolver(*m.kernel, first_only).solve_history(n.state, load, m.g0);
+  REQUIRE(first.cycles.size() == 1);
+  const double e1 = first.cycles[0].dissipated_energy;
+  REQUIRE(e1 > 0.0);
+
+  const RunResult r = Simulation(s).run();
+  REQUIRE(r.cycle);
+  REQUIRE(r.wear);
+  Scene twice = s;
+  twice.wear.reset();
+  twice.history = {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}, {3.0, 0.6 * P, Q, 0.0}, {4.0, P, Q, 0.0}};
+  const RunResult r2 = Simulation(twice).run();
+  const double worn = r.wear->records.back().worn_area;
+  MESSAGE(fmt::format("P down to 0.6 P and back under Q = 0.4 fP: first cycle {:.6g} J/m; steady cycle {:.3g} J/m "
+                      "after {} cycles (two periods: {:.3g} J/m after {}); worn area after 1e7 cycles {:.3g} m^2",
+                      e1, r.cycle->result.dissipated_energy, r.cycle->history_cycles,
+                      r2.cycle->result.dissipated_energy, r2.cycle->history_cycles, worn));
+  CHECK(r.cycle->history_steady);
+  CHECK(r.cycle->history_cycles == 3);
+  const nlohmann::json summary = make_summary(s, r);
+  CHECK(summary.at("cycle").at("history_cycles") == 3);
+  CHECK(summary.at("cycle").at("history_steady") == true);
+  CHECK(r.cycle->result.dissipated_energy <= kRepeat * e1);
+  CHECK(r.cycle->result.slip_max <= kRepeat * first.cycles[0].slip_max);
+  CHECK(r2.cycle->history_steady);
+  CHECK(r2.cycle->result.dissipated_energy <= kRepeat * e1);
+  // Archard under a history wears k ∫ e/f over the cycles: the first cycle's energy would give about
+  // k · 1e7 · e1 / f of worn area; the steady one gives none.
+  const double first_cycle_wear = 1e-12 * 1e7 * e1 / test::kHertzF;
+  CHECK(worn <= kRepeat * first_cycle_wear);
+  CHECK(r.wear->unsteady_history_responses == 0);
+  const std::vector<Warning> warnings = result_warnings(s, r);
+  CHECK(std::none_of(warnings.begin(), warnings.end(), [](const Warning& w) { return w.code == "history_unsteady"; }));
+}
+
+TEST_CASE("load history: a march capped before its cycle repeats says so, and the run warns") {
+  const double P = 1e5, Q = 0.4 * test::kHertzF * P;
+  Scene s = test::hertz_cycle(P, 0.0, 256);
+  s.Q_ratio.reset();
+  s.history = {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}};
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
+                        {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}}};
+  IncrementalSlipOptions capped;
+  capped.steady_cycles_max = 1;  // the first cycle slips and the second does not: one cycle cannot show it repeats
+  const IncrementalResult r = IncrementalSlipSolver(*m.kernel, capped).solve_history(n.state, load, m.g0);
+  CHECK(r.cycles.size() == 1);
+  CHECK(!r.repeated);
+  RunResult run;
+  run.normal = n;
+  run.cycle = solve_cycle(s, m, n);
+  CHECK(run.cycle->history_steady);
+  run.cycle->history_steady = false;
+  const std::vector<Warning> warnings = result_warnings(s, run);
+  const auto warned = std::find_if(warnings.begin(), warnings.end(),
+                                   [](const Warning& w) { return w.code == "history_unsteady"; });
+  REQUIRE(warned != warnings.end());
+  CHECK(warned->message.find("may not be the steady one") != std::string::npos);
+}
+
 TEST_CASE("load history: Q cycling with P out of phase - the steady cycle closes and dissipates") {
   const double P = 1e5, Q = 0.5 * test::kHertzF * P;
   Scene s = test::hertz_cycle(P, 0.0, 1024);

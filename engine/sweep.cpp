@@ -421,8 +421,18 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   // as it will be once the sweep is committed.
   std::vector<Scene> scenes;
   std::vector<std::string> problems = variation_problems(variations);
-  std::size_t total = 1;
-  for (const auto& v : variations) total *= v.values.size();
+  double product = 1.0;  // in double: a product past any integer type is refused as well
+  for (const auto& v : variations) product *= double(v.values.size());
+  if (product > double(kMaxSweepRuns)) {
+    std::string factors;
+    for (const auto& v : variations) factors += fmt::format("{}{} {}", factors.empty() ? "" : " x ", v.values.size(), v.key);
+    problems.push_back(fmt::format("--vary: the sweep would be {:.4g} runs ({}), more than the {} a sweep may hold "
+                                   "(each is a folder of results, and each run is validated before any starts); "
+                                   "give fewer values, or split the sweep",
+                                   product, factors, kMaxSweepRuns));
+    throw SceneError(problems);
+  }
+  const std::size_t total = std::size_t(product);
   for (std::size_t k = 0; k < total; ++k) {
     SweepRun run;
     for (std::size_t rest = k; const auto& v : variations) {

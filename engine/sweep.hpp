@@ -26,6 +26,10 @@ struct Variation {
 // JSON array of the values, which may be lists and objects themselves. Throws InputError.
 Variation parse_variation(const std::string& text);
 
+// The most runs one sweep may hold: the product of the variations' counts past it is refused (exit 2) before any
+// run's scene is built.
+inline constexpr std::size_t kMaxSweepRuns = 100000;
+
 // What one run came to, wherever it ran.
 struct SweepOutcome {
   int status = 0;        // 0 done, 1 internal error, 2 invalid, 3 not converged

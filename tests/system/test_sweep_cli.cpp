@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "system/program.hpp"
@@ -230,6 +231,29 @@ TEST_CASE("values that differ only in characters a folder name cannot hold get a
       const std::string file = resolved["profile"]["file"].get<std::string>();  // made absolute
       CHECK_MESSAGE(file.ends_with("/" + row[0]), file);
     }
+}
+
+TEST_CASE("a sweep of more runs than a sweep may hold is refused at once, exit 2, naming the product") {
+  // 1000 x 1000 x 1000 runs would not fit in memory as scenes; 1000 x 101 is 101000, just past the 100000 allowed.
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  const auto values = [](const char* key, int n, double from) {
+    std::string v = std::string(key) + "=";
+    for (int k = 0; k < n; ++k) v += fmt::format("{}{}", k ? "," : "", from * (1.0 + 1e-3 * k));
+    return v;
+  };
+  const Outcome huge = s.fretwear({"sweep", scene, "--vary", values("load.P", 1000, 1e5), "--vary",
+                                   values("friction", 1000, 0.3), "--vary", values("materials.both.E", 1000, 2e11),
+                                   "-q"});
+  CHECK_MESSAGE(huge.exited(kInvalid), huge.describe());
+  CHECK_MESSAGE(huge.err.find("the sweep would be 1e+09 runs (1000 load.P x 1000 friction x 1000 materials.both.E), "
+                              "more than the 100000") != std::string::npos,
+                huge.err);
+  const Outcome past = s.fretwear({"sweep", scene, "--vary", values("load.P", 1000, 1e5), "--vary",
+                                   values("friction", 101, 0.3), "-q"});
+  CHECK_MESSAGE(past.exited(kInvalid), past.describe());
+  CHECK_MESSAGE(past.err.find("1.01e+05 runs") != std::string::npos, past.err);
+  CHECK_FALSE(fs::exists(s.work / "out"));
 }
 
 TEST_CASE("a sweep refuses a key varied twice, and keys inside one another, exit 2, nothing written") {

@@ -178,4 +178,13 @@ std::string cycles_text(double c) {
   return fmt::format("N = {:.3g}e{}", c / std::pow(10.0, e), e);
 }
 
+std::string gnuplot_text(const std::string& text) {
+  std::string q = "'";
+  for (const char c : text) {
+    if (c == '\'') q += '\'';
+    q += c == '\n' || c == '\r' ? ' ' : c;
+  }
+  return q + "'";
+}
+
 }  // namespace fretwear

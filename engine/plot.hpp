@@ -36,6 +36,10 @@ std::string cycles_label(double cycles);
 // The same in plain text, for a noenhanced title: "N = 1e6", "N = 2.5e6", "N = 0 (unworn)".
 std::string cycles_text(double cycles);
 
+// `text` as a gnuplot string literal that holds it as it is: in single quotes, each of its own doubled (gnuplot reads
+// no backslash escapes there), so that quotes, backslashes and JSON text in a label cannot end it.
+std::string gnuplot_text(const std::string& text);
+
 // A number for a CSV cell: 10 significant digits, ±inf spelled out.
 std::string csv_number(double v);
 

@@ -113,18 +113,27 @@ Axis axis_of(const Variation& v) {
   a.min = *std::min_element(a.lo.begin(), a.lo.end());
   a.max = *std::max_element(a.hi.begin(), a.hi.end());
   constexpr std::size_t kMostTics = 12;  // beyond, gnuplot's own tics read better
+  // A value that is a list or an object labels its tic as the JSON it is, cut to kMostTicChars.
+  constexpr std::size_t kMostTicChars = 32;
   if (!numeric || n <= kMostTics) {
-    for (std::size_t i = 0; i < n; ++i)
-      a.tics += fmt::format("{}\"{}\" {}", i ? ", " : "",
-                            numeric ? fmt::format("{:.4g}", a.at[i])
-                            : v.values[i].is_string() ? v.values[i].get<std::string>() : v.values[i].dump(),
-                            number(a.at[i]));
+    for (std::size_t i = 0; i < n; ++i) {
+      std::string label = numeric                    ? fmt::format("{:.4g}", a.at[i])
+                          : v.values[i].is_string() ? v.values[i].get<std::string>()
+                                                    : v.values[i].dump();
+      if (label.size() > kMostTicChars) {
+        std::size_t cut = kMostTicChars - 3;
+        while (cut > 0 && (static_cast<unsigned char>(label[cut]) & 0xC0) == 0x80) --cut;  // not inside a character
+        label = label.substr(0, cut) + "...";
+      }
+      a.tics += fmt::format("{}{} {}", i ? ", " : "", gnuplot_text(label), number(a.at[i]));
+    }
   }
   return a;
 }
 
 std::string axis_commands(const Axis& a, char axis) {
-  std::string s = fmt::format("set {}label '{}' noenhanced\nset {}range [{}:{}]\n", axis, a.label, axis, a.min, a.max);
+  std::string s =
+      fmt::format("set {}label {} noenhanced\nset {}range [{}:{}]\n", axis, gnuplot_text(a.label), axis, a.min, a.max);
   if (a.log) s += fmt::format("set logscale {}\n", axis);
   if (!a.tics.empty()) s += fmt::format("set {}tics ({}) noenhanced\n", axis, a.tics);
   return s;

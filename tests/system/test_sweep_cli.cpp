@@ -180,7 +180,35 @@ TEST_CASE("a sweep of the normal contact alone maps its peak pressure, and gnupl
   CHECK_FALSE(fs::exists(dir / "gnuplot.log"));
 }
 
+TEST_CASE("a sweep over whole profiles labels its axis with their JSON, and gnuplot reads the script") {
+  // The values' JSON holds double quotes, which in a double-quoted tic label ended the string early.
+  Scratch s;
+  json scene = {{"name", "profiles"},
+                {"materials", {{"both", {{"E", 2e11}, {"nu", 0.3}}}}},
+                {"profile", {{"type", "cylinder"}, {"R", 0.01}}},
+                {"load", {{"P", 1e5}}},
+                {"grid", {{"cells", 256}}},
+                {"output", {{"dir", (s.work / "out").string()}, {"plots", true}}}};
+  const fs::path file = s.write("profiles.json", scene.dump());
+  const Outcome r = s.fretwear({"sweep", file.string(), "--vary",
+                                "profile=[{\"type\": \"cylinder\", \"R\": 0.01}, {\"type\": \"flat_rounded\", "
+                                "\"a\": 1e-4, \"R\": 0.01}]",
+                                "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const fs::path dir = s.work / "out" / "sweep";
+  std::ifstream gp(dir / "sweep.gp");
+  const std::string script((std::istreambuf_iterator<char>(gp)), std::istreambuf_iterator<char>());
+  CHECK_MESSAGE(script.find("'{\"R\":0.01,\"type\":\"cylinder\"}' 0") != std::string::npos, script);
+  CHECK_MESSAGE(script.find("'{\"R\":0.01,\"a\":0.0001,\"type\":\"...' 1") != std::string::npos, script);
+  CHECK(fs::exists(dir / "sweep_map.png"));
+  std::ifstream log(dir / "gnuplot.log");
+  const std::string said((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  CHECK_MESSAGE(!fs::exists(dir / "gnuplot.log"), said);
+}
+
 namespace {
+
+// The names of the run folders under <out>/sweep/runs.namespace {
 
 // The names of the run folders under <out>/sweep/runs.
 std::vector<std::string> run_folders(const fs::path& out) {

@@ -174,6 +174,22 @@ NormalResult solve_normal(const Scene& scene, const Model& model) {
   return r;
 }
 
+std::optional<NormalResult::PeakCheck> check_peak(const Scene& scene, const NormalResult& normal) {
+  constexpr int kFewestCells = 64;  // below, half the cells resolve nothing worth comparing
+  if (normal.reference || p_max_singular(normal) || normal.grid.n < kFewestCells || !(normal.p_max > 0.0))
+    return std::nullopt;
+  Scene half = scene;
+  half.window = std::pair{normal.grid.x_min, normal.grid.x_max};
+  half.cells = normal.grid.n / 2;
+  NormalResult coarse;
+  try {
+    coarse = solve_normal(half, make_model(half));
+  } catch (const std::exception&) {  // a check only: the run's own solve stands
+    return std::nullopt;
+  }
+  return NormalResult::PeakCheck{half.cells, coarse.p_max, std::abs(normal.p_max - coarse.p_max) / normal.p_max};
+}
+
 bool p_max_singular(const NormalResult& n) {
   if (n.zones.empty()) return false;
   const double reach = 2.0 * n.grid.h();
@@ -201,6 +217,7 @@ nlohmann::json summarise_normal(const Scene& scene, const NormalResult& n) {
       {"p_max", n.p_max},
       {"x_p_max", n.x_p_max},
       {"p_max_singular", p_max_singular(n)},
+      {"p_max_half_cells", n.peak_check ? json(n.peak_check->p_max) : json(nullptr)},
       {"cells_in_contact", n.cells_in_contact},
       {"load", load},
   };

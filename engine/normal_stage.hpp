@@ -45,12 +45,27 @@ struct NormalResult {
   int cells_in_contact = 0;
   std::optional<double> load_size_half_width;  // second, independent answer for symmetric single-zone profiles
   std::optional<Reference> reference;
+  // p_max solved again on half the cells over the same window (check_peak): how far the grid resolves the peak.
+  struct PeakCheck {
+    int cells = 0;
+    double p_max = 0.0;  // Pa
+    double change = 0.0;  // |p_max − this p_max| / p_max
+  };
+  std::optional<PeakCheck> peak_check;
 };
 
 // The normal contact. Throws ConvergenceError when the solve does not converge, InputError when the contact
 // reaches the end of a given window or no cell of it can touch.
 NormalResult solve_normal(const Scene& scene, const Model& model);
 NormalResult solve_normal(const Scene& scene, int cells = 0);
+
+// contact.p_max on half the cells over the same window, where nothing else says whether the grid resolves it: no
+// closed form to meet (Reference), and not at a singular edge (p_max_singular), whose peak grows with the grid by
+// nature. A peak that changes by more than kPeakChangeShare from half the cells is warned (`peak_unconverged`): a
+// feature of the profile narrower than a few cells (a corner's rounding), or a kink (a table's linear interpolation
+// bends the profile at each point, where the pressure peaks like ln(1/h)). Empty when skipped, or when the coarser
+// solve fails (it is only a check).
+std::optional<NormalResult::PeakCheck> check_peak(const Scene& scene, const NormalResult& normal);
 
 // Its part of summary.json: "contact" (the extent, the zones, the peak, the load balance, the closed form), "grid",
 // "materials" and "solver.normal".

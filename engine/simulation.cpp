@@ -43,6 +43,7 @@ RunResult Simulation::run(const WearControl* control) const {
     const Model& model = setup.model;
     const StopCheck stop = control ? control->stop_now : StopCheck{};
     r.normal = solve_normal(scene_, model);
+    r.normal.peak_check = check_peak(scene_, r.normal);
     r.timings.normal = seconds_since(t0);
     if (setup.effects.cycle) {
       stage = "tangential";

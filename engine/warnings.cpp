@@ -111,6 +111,33 @@ void closed_form_missed(const NormalResult& n, std::vector<Warning>& out) {
                                100.0 * kClosedFormTolerance)});
 }
 
+// contact.p_max against the same solve on half the cells, where no closed form and no singular edge says more. A
+// table interpolated linearly bends the profile at each of its points, and under a point inside the contact the
+// pressure peaks like ln(1/h): it grows with every refinement, by however little, so that is warned whatever the
+// change.
+void peak_resolution(const Scene& scene, const NormalResult& n, std::vector<Warning>& out) {
+  if (!n.peak_check) return;
+  const ProfileSpec& profile = scene.profile;
+  int kinks = 0;
+  if (profile.type == ProfileType::table && profile.interpolation == Interpolation::linear)
+    for (std::size_t k = 1; k + 1 < profile.x.size(); ++k)
+      for (const Zone& z : n.zones)
+        kinks += profile.x[k] > z.left.x && profile.x[k] < z.right.x;
+  if (kinks == 0 && !(n.peak_check->change > kPeakChangeShare)) return;
+  const std::string why =
+      kinks > 0 ? fmt::format("{} of the table's points lie inside the contact, where its linear interpolation bends "
+                              "the profile and the pressure peaks like ln(1/h), growing with every refinement: give "
+                              "profile.interpolation \"makima\" or \"pchip\"",
+                              kinks)
+                : "a feature of the profile there (a rounded corner, an asperity) spans too few cells: give more "
+                  "grid.cells, or a narrower grid.window";
+  out.push_back({"peak_unconverged",
+                 fmt::format("contact.p_max is {:.4g} Pa on {} cells and {:.4g} Pa on {} ({:.1f} % apart), so it is "
+                             "the grid's, not a resolved peak (at x = {:.4g} m); {}; the load and the extent converge",
+                             n.p_max, n.grid.n, n.peak_check->p_max, n.peak_check->cells,
+                             100.0 * n.peak_check->change, n.x_p_max, why)});
+}
+
 // A load history whose P moves within the increments (the scene's, or a block's): its dissipated energy converges
 // at first order in them, and its change from half the increments is about the error left
 // (CycleStage::history_energy).
@@ -365,6 +392,7 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
   std::vector<Warning> out;
   contact_resolution(result.normal, out);
   closed_form_missed(result.normal, out);
+  peak_resolution(scene, result.normal, out);
   if (result.cycle) {
     slip_resolution(result.normal, *result.cycle, out);
     history_increments(scene, *result.cycle, out);

@@ -24,6 +24,8 @@ inline constexpr int kMinContactCells = 16;
 inline constexpr int kMinStickCells = 16;
 inline constexpr int kMinSlipCells = 4;
 inline constexpr double kClosedFormTolerance = 0.05;
+// contact.p_max changing by more than this share from half the cells (engine/normal_stage.hpp, check_peak) is warned.
+inline constexpr double kPeakChangeShare = 0.05;
 inline constexpr double kLongRunSeconds = 3600.0;
 // A warning of too few cells advises a narrower grid.window only where the window used is at least this many times
 // as wide as the least window around the contact (warnings.cpp, resolution_advice): narrowed to it, the same cells are

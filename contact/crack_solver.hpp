@@ -96,8 +96,6 @@ namespace fretwear {
 
 struct CrackSolverOptions {
   int n_quadrature = 60;  // N Gauss–Jacobi nodes; error in K ≈ 0.34/N² relative at 90° (1e-4 at 60); in [2, 1000]
-  // Distances at which the crack-line stress is tabulated per crack position, r_j = l_max (j/M)², j = 0..M; ≥ 8.
-  int table_points = 256;
   // Active-set passes of the face-contact solve before giving up (ConvergenceError); ≥ 1.
   int max_contact_iterations = 500;
 
@@ -168,7 +166,8 @@ class CrackSolver {
   CrackFaces faces(double l, const Load& normal, const Load& shear) const;
 
   // SIFs at x = x_c below the tractions for each length in lengths (m, > 0): the stress along the crack line is
-  // tabulated once (StressLine, to the largest length) and every length reads it at its collocation points.
+  // evaluated at each length's collocation points (stress_along_line), so a length's SIFs are the same whatever
+  // other lengths are listed with it.
   CrackResult solve(const SurfaceTractions& t, double x_c, std::span<const double> lengths) const;
 
   // The open crack's normalised opening density φ₁(s_i) (Pa) of a crack of length l under the normal load σ_n(η)

@@ -89,40 +89,18 @@ std::vector<Stress> stress_along_depth(const SurfaceTractions& t, double x, std:
   return out;
 }
 
-StressLine::StressLine(const SurfaceTractions& t, double x, double y_max, int M) : StressLine(t, x, y_max, M, 90.0) {}
-
-StressLine::StressLine(const SurfaceTractions& t, double x, double length, int M, double angle_deg)
-    : x_(x), angle_deg_(angle_deg), y_(std::size_t(M) + 1), s_(y_.size()), ds_(y_.size()) {
-  assert(M >= 1 && length > 0.0 && angle_deg > 0.0 && angle_deg < 180.0);
-  // Direction (cos α, sin α), exact at α = 90° (the depth line of the first constructor).
+std::vector<Stress> stress_along_line(const SurfaceTractions& t, double x, double angle_deg, std::span<const double> r) {
+  assert(angle_deg > 0.0 && angle_deg < 180.0);
+  // Direction (cos α, sin α), exact at α = 90°: the depth line x + 0 r.
   const double c = std::sin((90.0 - angle_deg) * kPi / 180.0), s = std::cos((90.0 - angle_deg) * kPi / 180.0);
   const std::vector<Jump> J = jumps(t);
-  for (int j = 0; j <= M; ++j) {
-    const double u = double(j) / M;
-    y_[j] = length * u * u;
-    if (c == 0.0) {
-      s_[j] = sum_over_jumps(J, x, y_[j], &ds_[j]);
-    } else {
-      Stress dy, dx;
-      s_[j] = sum_over_jumps(J, x + c * y_[j], s * y_[j], &dy, &dx);
-      ds_[j] = {c * dx.xx + s * dy.xx, c * dx.yy + s * dy.yy, c * dx.xy + s * dy.xy};
-    }
-    s_[j].xx += t.sigma_bulk;
+  std::vector<Stress> out(r.size());
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    assert(r[k] >= 0.0);
+    out[k] = sum_over_jumps(J, x + c * r[k], s * r[k], nullptr);
+    out[k].xx += t.sigma_bulk;
   }
-  y_.back() = length;
-}
-
-Stress StressLine::at(double y) const {
-  const int M = int(y_.size()) - 1;
-  y = std::clamp(y, 0.0, y_.back());
-  // y_j = y_max (j/M)²: the interval is found directly.
-  const int j = std::min(M - 1, int(M * std::sqrt(y / y_.back())));
-  const double h = y_[j + 1] - y_[j], t = (y - y_[j]) / h;
-  const double t2 = t * t, t3 = t2 * t;
-  const double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
-  auto cubic = [&](double f0, double d0, double f1, double d1) { return h00 * f0 + h10 * h * d0 + h01 * f1 + h11 * h * d1; };
-  const Stress &a = s_[j], &b = s_[j + 1], &da = ds_[j], &db = ds_[j + 1];
-  return {cubic(a.xx, da.xx, b.xx, db.xx), cubic(a.yy, da.yy, b.yy, db.yy), cubic(a.xy, da.xy, b.xy, db.xy)};
+  return out;
 }
 
 Principal principal(const Stress& s) {

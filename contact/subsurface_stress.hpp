@@ -48,33 +48,10 @@ Stress stress_at(const SurfaceTractions& t, double x, double y);
 // σ at one x for every depth y_j ≥ 0: the jumps are gathered once and each boundary is visited once per depth.
 std::vector<Stress> stress_along_depth(const SurfaceTractions& t, double x, std::span<const double> y);
 
-// A depth profile of the stress at one x: values and exact y-derivatives at graded depths
-//     y_j = y_max (j/M)²,  j = 0..M,
-// dense near the surface where short cracks live, and a cubic Hermite interpolant between them (error
-// O(Δy⁴ ∂⁴σ/∂y⁴)). Built once per x; evaluating it costs a binary search and a cubic.
-//
-// The second constructor tabulates along a straight line from the surface point (x, 0) at an angle α to the surface
-// instead (an inclined crack's line): the points (x + r cos α, r sin α) at distances r_j = length (j/M)², with the
-// exact derivative along the line cos α ∂σ/∂x + sin α ∂σ/∂y. There "depth" in the members below reads "distance r
-// along the line"; α = 90° is the depth profile above, bit for bit. σ stays in x, y components.
-class StressLine {
- public:
-  // Tabulates σ at x for 0 ≤ y ≤ y_max (m) on M + 1 depths (M ≥ 1).
-  StressLine(const SurfaceTractions& t, double x, double y_max, int M);
-  // Tabulates σ along the line from (x, 0) at angle_deg to the surface (in (0, 180); below 90 it leans toward +x),
-  // for 0 ≤ r ≤ length (m), on M + 1 points.
-  StressLine(const SurfaceTractions& t, double x, double length, int M, double angle_deg);
-  Stress at(double y) const;  // y (or r) in [0, y_max]; clamped outside
-  double x() const { return x_; }
-  double y_max() const { return y_.back(); }
-  double angle_deg() const { return angle_deg_; }
-  const std::vector<double>& depths() const { return y_; }
-
- private:
-  double x_, angle_deg_;
-  std::vector<double> y_;
-  std::vector<Stress> s_, ds_;  // σ and ∂σ/∂y at y_j
-};
+// σ at the points (x + r cos α, r sin α) of the straight line from the surface point (x, 0) at angle_deg α to the
+// surface (in (0, 180); below 90 it leans toward +x), for every distance r ≥ 0 along it: the jumps gathered once.
+// At 90° these are stress_along_depth's depths, bit for bit.
+std::vector<Stress> stress_along_line(const SurfaceTractions& t, double x, double angle_deg, std::span<const double> r);
 
 // Principal in-plane stresses σ1 ≥ σ2 (Pa) and the angle (rad) from x to σ1's direction:
 //     σ1,2 = (σxx + σyy)/2 ± √(((σxx − σyy)/2)² + σxy²),   tan 2α = 2σxy / (σxx − σyy).

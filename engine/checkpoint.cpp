@@ -135,6 +135,19 @@ std::uint64_t scene_hash(const Scene& scene) {
   return h;
 }
 
+namespace {
+
+// fnv1a64() of the CBOR of j without its "checksum": what "checksum" holds. The CBOR of a document read back is the
+// CBOR it was read from (its keys in order, each number in the form its value takes), so a checkpoint whose bytes
+// changed after it was written no longer has it.
+std::string content_checksum(json j) {
+  j.erase("checksum");
+  const std::vector<std::uint8_t> bytes = json::to_cbor(j);
+  return fnv1a64(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+}  // namespace
+
 std::optional<json> read_checkpoint(const std::filesystem::path& path, const Scene& scene) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
@@ -148,6 +161,10 @@ std::optional<json> read_checkpoint(const std::filesystem::path& path, const Sce
                                  "it cannot be resumed. Delete it, or run without --resume",
                                  path.string(), j.value("fretwear", "?"), j.value("format_version", 0), kVersion,
                                  kCheckpointFormat));
+  if (!j.contains("checksum") || j["checksum"] != content_checksum(j))
+    throw InputError(fmt::format("{}: damaged: its content no longer has the checksum it was written with, so "
+                                 "what it holds cannot be trusted; delete it and run without --resume",
+                                 path.string()));
   const std::string want = fmt::format("{:016x}", scene_hash(scene));
   if (j.value("scene_hash", "") != want)
     throw InputError(fmt::format("{}: the checkpoint belongs to another scene (\"{}\", hash {}; this scene \"{}\" "
@@ -157,7 +174,9 @@ std::optional<json> read_checkpoint(const std::filesystem::path& path, const Sce
 }
 
 void write_checkpoint(const std::filesystem::path& path, const json& j) {
-  const std::vector<std::uint8_t> bytes = json::to_cbor(j);
+  json sealed = j;
+  sealed["checksum"] = content_checksum(j);
+  const std::vector<std::uint8_t> bytes = json::to_cbor(sealed);
   const DeferredStopSignals hold;  // no temporary file left by a signal
   if (path.has_parent_path()) {
     std::error_code ec;

@@ -12,6 +12,7 @@
 //     stepper_state                                                    one of the stepper schemas below
 //     blocks (under load.blocks only)   the block the run stands in, earlier_records (how many of `records` the
 //                                       blocks before it made), and the stage's counts and settings so far
+//     checksum                          fnv1a64 of the CBOR of all the rest (written by write_checkpoint)
 #pragma once
 
 #include <cstdint>
@@ -31,7 +32,7 @@
 
 namespace fretwear {
 
-inline constexpr int kCheckpointFormat = 1;
+inline constexpr int kCheckpointFormat = 2;  // 2: with its checksum
 
 // <output.dir>.checkpoint: beside the output folder, which is replaced only when a run completes.
 std::filesystem::path checkpoint_path(const Scene& scene);
@@ -46,7 +47,8 @@ bool is_checkpoint_file(const std::filesystem::path& path);
 // FNV-1a (64 bit) of the resolved scene's JSON: two scenes that resolve alike share a checkpoint.
 std::uint64_t scene_hash(const Scene& scene);
 // The checkpoint at `path` for this scene, or nothing when there is none. Throws InputError when the file is not a
-// fretwear checkpoint, has another format or fretwear version, or belongs to another scene.
+// fretwear checkpoint, has another format or fretwear version, is damaged (its checksum), or belongs to another
+// scene.
 std::optional<nlohmann::json> read_checkpoint(const std::filesystem::path& path, const Scene& scene);
 // Writes j atomically (an unnamed file, fsync, its name, rename, fsync of the folder).
 void write_checkpoint(const std::filesystem::path& path, const nlohmann::json& j);

@@ -280,6 +280,22 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
                                         control.resume->at("cycles_total").get<double>(), control.checkpoint.string())
                           : fmt::format("fretwear: {}: no checkpoint ({}): running from the start\n", scene.name,
                                         control.checkpoint.string()));
+    } else if (!quiet) {
+      // A checkpoint this run will replace: said before it is, in case --resume was meant.
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(control.checkpoint, ec)) {
+        std::string held;
+        try {
+          if (const auto j = read_checkpoint(control.checkpoint, scene))
+            held = fmt::format("this scene's wear run stopped at cycle {:.0f} of {:.0f}", j->at("cycles").get<double>(),
+                               j->at("cycles_total").get<double>());
+        } catch (const InputError&) {
+          held = "a checkpoint this scene cannot resume (fretwear run --resume says why)";
+        }
+        std::cerr << fmt::format("fretwear: {}: {} holds {}; this run starts from cycle 0 and replaces it (to "
+                                 "continue it instead, stop now and run: fretwear run --resume {})\n",
+                                 scene.name, control.checkpoint.string(), held, path);
+      }
     }
   } else if (resume && !quiet) {
     std::cerr << fmt::format("fretwear: {}: the scene does not wear, nothing to resume: running it\n", scene.name);

@@ -6,6 +6,7 @@
 // last checkpoint). Real signals land on a run slowed by FRETWEAR_STEP_PAUSE_MS (2 ms a step) in the last case.
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <vector>
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -239,6 +241,41 @@ TEST_CASE("load.blocks with each body in its own frame, stopped or killed in a b
   const Whole whole = whole_run(s);
   REQUIRE(whole.summary["wear"]["bodies"]["frames"] == "own");
   check_blocks_resume(s, whole, {{10, 50.0, 60.0}, {20, 60.0, 20060.0}});
+}
+
+TEST_CASE("--resume refuses a damaged checkpoint, and a run without --resume says which checkpoint it replaces") {
+  Scratch s;
+  s.write("s.json", scene());
+  const fs::path out = s.work / "out" / "resume", checkpoint = s.work / "out" / "resume.checkpoint";
+  const Outcome stopped = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "5"}});
+  REQUIRE_MESSAGE(stopped.exited(kInterrupted), stopped.describe());
+  REQUIRE(fs::exists(checkpoint));
+  const std::string bytes = read_file(checkpoint);
+  // One number changed after the checkpoint was written, as a flipped bit in a double would change it.
+  json j = json::from_cbor(bytes);
+  REQUIRE(j.contains("checksum"));
+  j["cycles"] = j["cycles"].get<double>() * (1.0 + 1e-12);
+  const std::vector<std::uint8_t> changed = json::to_cbor(j);
+  write_file(checkpoint, std::string(changed.begin(), changed.end()));
+  const std::string kept = read_file(out / "summary.json");
+  const Outcome damaged = s.fretwear({"run", "--resume", "s.json"});
+  CHECK_MESSAGE(damaged.exited(kInvalid), damaged.describe());
+  CHECK_MESSAGE(damaged.all().find("resume.checkpoint: damaged") != std::string::npos, damaged.all());
+  CHECK(read_file(out / "summary.json") == kept);  // nothing written
+  // Without --resume the run says what it replaces: the damaged one, then this scene's own.
+  const Outcome over_damaged = s.fretwear({"run", "s.json"});
+  REQUIRE_MESSAGE(over_damaged.exited(kDone), over_damaged.describe());
+  CHECK_MESSAGE(over_damaged.all().find("a checkpoint this scene cannot resume") != std::string::npos,
+                over_damaged.all());
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "5"}}).exited(kInterrupted));
+  const Outcome over = s.fretwear({"run", "s.json"});
+  REQUIRE_MESSAGE(over.exited(kDone), over.describe());
+  CHECK_MESSAGE(over.all().find("holds this scene's wear run stopped at cycle") != std::string::npos, over.all());
+  CHECK(over.all().find("fretwear run --resume s.json") != std::string::npos);
+  CHECK(!fs::exists(checkpoint));  // replaced, and removed once the run completed
+  // A run with nothing to replace says nothing of checkpoints.
+  const Outcome again = s.fretwear({"run", "s.json"});
+  CHECK(again.all().find("checkpoint") == std::string::npos);
 }
 
 TEST_CASE("--resume refuses another scene's checkpoint, and without one runs from the start") {

@@ -266,6 +266,10 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
   if (!quiet && checked.wear_seconds > 60.0)
     std::cerr << fmt::format("fretwear: {}: the wear stage will take about {}\n", scene.name,
                              duration_words(checked.wear_seconds));
+  if (!quiet && checked.stress_seconds > 60.0)
+    std::cerr << fmt::format("fretwear: {}: the stress maps ({} x {} points{}) will take about {}\n", scene.name,
+                             scene.stress->nx, scene.stress->ny + 1, scene.wear ? ", at every record" : "",
+                             duration_words(checked.stress_seconds));
   WearControl control;
   if (scene.wear) {
     control.checkpoint = checkpoint_path(scene);
@@ -416,6 +420,8 @@ int validate(const std::string& path, bool quiet, bool verbose) {
   if (!quiet) {
     std::cout << path << ": valid scene \"" << scene.name << "\"";
     if (checked.wear_seconds > 60.0) std::cout << "; its wear stage will take about " << duration_words(checked.wear_seconds);
+    if (checked.stress_seconds > 60.0)
+      std::cout << "; its stress maps will take about " << duration_words(checked.stress_seconds);
     std::cout << "\n";
   }
   if (verbose) std::cout << scene.to_json().dump(2) << "\n";

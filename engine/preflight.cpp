@@ -1,6 +1,7 @@
 #include "engine/preflight.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 
@@ -10,6 +11,7 @@
 
 #include "engine/checkpoint.hpp"
 #include "engine/simulation.hpp"
+#include "engine/stress_stage.hpp"
 #include "engine/wear_stage.hpp"
 
 namespace fretwear {
@@ -186,6 +188,28 @@ void check_wear(const Scene& scene, const Setup& setup, const NormalResult& norm
     preflight->warnings.push_back({"long_run", estimate + "; stepper \"implicit\" takes a few hundred solves"});
 }
 
+// The stress stage's cost (Preflight::stress_seconds): a column of the map timed on the unworn contact, under each
+// phase's tractions, times the columns of every state's maps (the earlier records' at every kRecordStride-th point
+// across and in depth). A worn contact is wider, its columns dearer: the estimate is a lower bound of the order.
+void estimate_stress(const Scene& scene, const NormalResult& normal, Preflight& preflight) {
+  const StressEffect& effect = *scene.stress;
+  const std::vector<Phase> phases = cycle_phases(scene, normal.state.p, nullptr);
+  std::vector<double> y;
+  for (int j = 0; j <= effect.ny; ++j) y.push_back(j * 1e-6);
+  const double x = 0.5 * (normal.zones.front().left.x + normal.zones.back().right.x);
+  const auto t0 = std::chrono::steady_clock::now();
+  int columns = 0;
+  do {  // at least a few milliseconds, so that the clock resolves the column
+    for (const Phase& ph : phases) (void)stress_along_depth({normal.grid, ph.p, ph.q, ph.sigma_bulk}, x, y);
+    ++columns;
+  } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 5e-3 && columns < 64);
+  const double per_column = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / columns;
+  const double records = scene.wear ? double(std::max<std::size_t>(scene.wear->record.size(), 1)) : 0.0;
+  const double full = double(effect.nx), earlier = records * std::ceil(full / kRecordStride) *
+                                                   std::ceil((effect.ny + 1.0) / kRecordStride) / (effect.ny + 1.0);
+  preflight.stress_seconds = per_column * (full + earlier);
+}
+
 }  // namespace
 
 std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflight) {
@@ -199,6 +223,7 @@ std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflig
     if (setup.cycle && setup.cycle->asked == TangentialRoute::analogy)
       solve_cycle(scene, setup.model, *setup.cycle, normal);
     if (setup.effects.wear) check_wear(scene, setup, normal, problems, preflight);
+    if (setup.effects.stress && preflight && !normal.zones.empty()) estimate_stress(scene, normal, *preflight);
   } catch (const ConvergenceError&) {
     // Not the scene's problem: the run reports it, with what it solved, and exits with status 3.
   } catch (const InputError& e) {

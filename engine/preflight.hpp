@@ -23,6 +23,7 @@ inline constexpr double kMaxRunSeconds = 86400.0;
 struct Preflight {
   std::vector<Warning> warnings;  // a wear run estimated past kLongRunSeconds
   double wear_seconds = 0.0;      // estimated wall time of the wear stage (s); 0 when short or not estimated
+  double stress_seconds = 0.0;    // of the stress stage's maps, from a column timed (s); 0 without stress maps
 };
 
 // The problems of the scene's physics that show before solving (every one, as "key: what is wrong; what to do").

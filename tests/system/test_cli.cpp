@@ -112,6 +112,29 @@ TEST_CASE("an unwritable output folder is reported before any work, with status 
   CHECK(r.all().find("output.dir") != std::string::npos);
 }
 
+TEST_CASE("a stress map of millions of points is estimated before it runs, by validate and by run") {
+  // 2001 x 2001 points a phase under the default Hertz cycle at 1024 cells: minutes of strip-load sums. The estimate
+  // times a column, so it is said before any map is computed; the default 161 x 82 map is not worth a word.
+  Scratch s;
+  const std::string big = R"({"name": "big", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}},
+    "grid": {"cells": 1024}, "effects": {"tangential": {}, "stress": {"nx": 2001, "ny": 2000}}})";
+  s.write("big.json", big);
+  const Outcome validated = s.fretwear({"validate", "big.json"});
+  CHECK_MESSAGE(validated.exited(kDone), validated.describe());
+  CHECK_MESSAGE(validated.all().find("its stress maps will take about") != std::string::npos, validated.all());
+  s.write("small.json", R"({"name": "small", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}},
+    "grid": {"cells": 1024}, "effects": {"tangential": {}, "stress": {}}})");
+  const Outcome small = s.fretwear({"validate", "small.json"});
+  CHECK_MESSAGE(small.exited(kDone), small.describe());
+  CHECK(small.all().find("stress maps") == std::string::npos);
+  // run says it on stderr before solving; stopped there by the test hook, it writes nothing.
+  const Outcome run = s.fretwear({"run", "big.json"}, {{"FRETWEAR_STOP_IN_STAGE", "stress"}});
+  CHECK(run.err.find("the stress maps (2001 x 2001 points) will take about") != std::string::npos);
+  CHECK(!fs::exists(s.work / "output" / "big"));
+}
+
 TEST_CASE("validate writes nothing, defaults prints a valid scene, --version, and usage errors exit 2") {
   Scratch s;
   s.write("s.json", kGood);

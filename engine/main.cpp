@@ -100,8 +100,9 @@ class ProgressLine {
     // The share of the asymptote's worn area, where there is one (0 without: displacement control, dissimilar
     // bodies, histories).
     const std::string limit = p.fraction > 0.0 ? fmt::format(", {:.1f}% of the limit", 100.0 * p.fraction) : "";
-    const std::string line = fmt::format("wear: {:.0f} / {:.0f} cycles, ΔN {:.3g}{}, {} elapsed, ~{} left", p.cycles,
-                                         p.total, p.dN, limit, clock_time(elapsed), left);
+    const std::string block = p.block >= 0 ? fmt::format(" (load.blocks[{}] of {})", p.block, p.blocks) : "";
+    const std::string line = fmt::format("wear: {:.0f} / {:.0f} cycles{}, ΔN {:.3g}{}, {} elapsed, ~{} left", p.cycles,
+                                         p.total, block, p.dN, limit, clock_time(elapsed), left);
     std::cerr << (terminal_ ? "\r\033[K" + line : line + "\n") << std::flush;
   }
   void finish() {

@@ -660,7 +660,14 @@ bool WearRun::boundary(const DriveState& at, bool recorded, Save& save) {
   double area = 0.0;
   for (double wi : w_) area += wi * h;
   const double fraction = stage_.asymptote.worn_area > 0.0 ? area / stage_.asymptote.worn_area : 0.0;
-  const WearProgress progress{at.N, times_.back(), at.dt, fraction, int(at.steps)};
+  // Under load.blocks the run's cycles, all blocks', and the block it stands in; this block's end is not the run's.
+  double total = times_.back();
+  if (blocks_) {
+    total = 0.0;
+    for (const LoadBlock& b : scene_.blocks) total += b.cycles;
+  }
+  const WearProgress progress{at.N, total, at.dt, fraction, int(at.steps), blocks_ ? blocks_->block : -1,
+                              int(scene_.blocks.size())};
   if (control_.progress) control_.progress(progress);
   const bool stop = control_.stop_requested && control_.stop_requested(progress);
   const bool due =

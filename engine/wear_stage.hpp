@@ -145,6 +145,7 @@ struct WearProgress {
   double dN = 0.0;                   // the next step's size (cycles)
   double fraction = 0.0;             // worn area over the asymptote's
   int steps = 0;                     // accepted steps so far
+  int block = -1, blocks = 0;        // under load.blocks: the block the run stands in (from 0), and how many
 };
 
 struct WearControl {

@@ -135,6 +135,26 @@ TEST_CASE("a stress map of millions of points is estimated before it runs, by va
   CHECK(!fs::exists(s.work / "output" / "big"));
 }
 
+TEST_CASE("a wear run under load.blocks reports its progress against all its cycles, naming the block") {
+  // Each block's end is not the run's: the lines count to the blocks' sum, and a log (stderr not a terminal) gets a
+  // line at every tenth of it, through every block.
+  Scratch s;
+  json scene = json::parse(read_file(fs::path(FRETWEAR_SOURCE_DIR) / "examples" / "hertz_wear_blocks.json"));
+  scene["output"] = {{"dir", "out"}, {"plots", false}};
+  s.write("blocks.json", scene.dump());
+  const Outcome r = s.fretwear({"run", "blocks.json"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  std::vector<std::string> lines;
+  std::istringstream in(r.err);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("wear: ", 0) == 0) lines.push_back(line);
+  REQUIRE(lines.size() >= 10);
+  for (const std::string& line : lines) CHECK_MESSAGE(line.find(" / 10000 cycles (load.blocks[") != std::string::npos, line);
+  for (const char* block : {"(load.blocks[0] of 3)", "(load.blocks[1] of 3)", "(load.blocks[2] of 3)"})
+    CHECK_MESSAGE(r.err.find(block) != std::string::npos, r.err);
+  CHECK_MESSAGE(lines.back().rfind("wear: 10000 / 10000 cycles (load.blocks[2] of 3)", 0) == 0, lines.back());
+}
+
 TEST_CASE("validate writes nothing, defaults prints a valid scene, --version, and usage errors exit 2") {
   Scratch s;
   s.write("s.json", kGood);

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -81,16 +82,38 @@ Variation parse_variation(const std::string& text) {
 
 namespace {
 
-void set_path(json& j, const std::string& dotted, const json& value) {
+// Sets the value at a dotted key path: each part an object's key, or, where the scene holds a list, a decimal index
+// into it (profile.terms.1.R: the second term's R). An object missing on the way is made; an index past the list's
+// end is a problem, returned (empty when set).
+std::string set_path(json& j, const std::string& dotted, const json& value) {
   json* node = &j;
   std::stringstream parts(dotted);
   std::vector<std::string> keys;
   for (std::string k; std::getline(parts, k, '.');) keys.push_back(k);
-  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-    if (!node->contains(keys[i]) || !(*node)[keys[i]].is_object()) (*node)[keys[i]] = json::object();
-    node = &(*node)[keys[i]];
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const bool last = i + 1 == keys.size();
+    if (node->is_array()) {
+      std::size_t index = 0;
+      const auto [end, ec] = std::from_chars(keys[i].data(), keys[i].data() + keys[i].size(), index);
+      std::string at;
+      for (std::size_t k = 0; k < i; ++k) at += (k ? "." : "") + keys[k];
+      if (ec != std::errc() || end != keys[i].data() + keys[i].size())
+        return fmt::format("--vary {}: {} is a list, and \"{}\" is no index into it; give its entries by number from "
+                           "0 ({}.0, {}.1, ...)",
+                           dotted, at, keys[i], at, at);
+      if (index >= node->size())
+        return fmt::format("--vary {}: {} holds {} entr{} (0 to {}), so {} is past its end", dotted, at, node->size(),
+                           node->size() == 1 ? "y" : "ies", node->size() - 1, index);
+      node = &(*node)[index];
+    } else {
+      if (!node->is_object()) *node = json::object();
+      if (!last && (!node->contains(keys[i]) || !(*node)[keys[i]].is_structured()))
+        (*node)[keys[i]] = json::object();
+      node = &(*node)[keys[i]];
+    }
+    if (last) *node = value;
   }
-  (*node)[keys.back()] = value;
+  return {};
 }
 
 // The longest name a scene may have (valid_name, engine/scene.cpp): a run's name is its scene's.
@@ -442,9 +465,16 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     result.runs.push_back(std::move(run));
   }
   for (const std::string& p : name_runs(base_scene.name, variations, result.runs)) problems.push_back(p);
-  for (const SweepRun& run : result.runs) {
+  for (std::size_t r = 0; r < result.runs.size(); ++r) {
+    const SweepRun& run = result.runs[r];
     json j = base;
-    for (std::size_t i = 0; i < variations.size(); ++i) set_path(j, variations[i].key, run.values[i]);
+    bool placed = true;
+    for (std::size_t i = 0; i < variations.size(); ++i)
+      if (const std::string p = set_path(j, variations[i].key, run.values[i]); !p.empty()) {
+        if (r == 0) problems.push_back(p);  // the scene's shape, the same for every run: said once
+        placed = false;
+      }
+    if (!placed) continue;
     j["name"] = run.name;
     j["output"] = {{"dir", (result.dir / "runs" / run.name).string()}, {"plots", base_scene.plots}};
     try {

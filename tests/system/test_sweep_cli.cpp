@@ -261,6 +261,46 @@ TEST_CASE("values that differ only in characters a folder name cannot hold get a
     }
 }
 
+TEST_CASE("a key into a list varies that entry: profile.terms.1.amplitude, and an index past the end is refused") {
+  // A sum profile's terms are a list: the index names an entry (it once replaced the whole list by an object, and
+  // every run was refused as "profile.terms: ... is an object").
+  Scratch s;
+  json scene = {{"name", "sum"},
+                {"materials", {{"both", {{"E", 2e11}, {"nu", 0.3}}}}},
+                {"profile",
+                 {{"type", "sum"},
+                  {"terms",
+                   {{{"type", "cylinder"}, {"R", 0.01}},
+                    {{"type", "wavy"}, {"amplitude", 1e-7}, {"wavelength", 5e-5}}}}}},
+                {"load", {{"P", 1e5}}},
+                {"grid", {{"cells", 256}}},
+                {"output", {{"dir", (s.work / "out").string()}, {"plots", false}}}};
+  const fs::path file = s.write("sum.json", scene.dump());
+  const Outcome r = s.fretwear({"sweep", file.string(), "--vary", "profile.terms.1.amplitude=1e-7,2e-7", "-q"});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const json resolved = json::parse(
+      read_file(s.work / "out" / "sweep" / "runs" / "sum__profile.terms.1.amplitude_2e-07" / "scene.resolved.json"));
+  CHECK(resolved["profile"]["terms"].size() == 2);
+  CHECK(resolved["profile"]["terms"][1]["amplitude"] == 2e-7);
+  CHECK(resolved["profile"]["terms"][0]["R"] == 0.01);
+  const std::string csv = read_file(s.work / "out" / "sweep" / "sweep.csv");
+  CHECK(csv.rfind("profile.terms.1.amplitude_m,", 0) == 0);
+  fs::remove_all(s.work / "out");
+  for (const auto& [vary, said] :
+       {std::pair{"profile.terms.2.R=0.01,0.02", "--vary profile.terms.2.R: profile.terms holds 2 entries (0 to 1), "
+                                                 "so 2 is past its end"},
+        std::pair{"profile.terms.x.R=0.01,0.02", "--vary profile.terms.x.R: profile.terms is a list, and \"x\" is "
+                                                 "no index into it"}}) {
+    CAPTURE(vary);
+    const Outcome bad = s.fretwear({"sweep", file.string(), "--vary", vary, "-q"});
+    CHECK_MESSAGE(bad.exited(kInvalid), bad.describe());
+    CHECK_MESSAGE(bad.err.find(said) != std::string::npos, bad.err);
+    const auto once = bad.err.find(said);
+    CHECK(bad.err.find(said, once + 1) == std::string::npos);  // said once, not for every run
+    CHECK_FALSE(fs::exists(s.work / "out"));
+  }
+}
+
 TEST_CASE("a sweep of more runs than a sweep may hold is refused at once, exit 2, naming the product") {
   // 1000 x 1000 x 1000 runs would not fit in memory as scenes; 1000 x 101 is 101000, just past the 100000 allowed.
   Scratch s;

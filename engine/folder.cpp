@@ -486,19 +486,14 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path&
   const fs::path& dir = scene.output_dir;
   // The folder's path is written into summary.json and the report, which hold UTF-8 text only (a Python caller can
   // give any bytes).
-  try {
-    (void)json(dir.string()).dump();
-  } catch (const json::type_error&) {
+  if (!utf8_text(dir.string())) {
     problems.push_back(fmt::format("output.dir: {} is not UTF-8 text, which summary.json and the report hold; give "
                                    "a path in UTF-8",
                                    json(dir.string()).dump(-1, ' ', false, json::error_handler_t::replace)));
     return problems;
   }
-  // A NUL byte ends a path for every call of the file system, which would take the part before it for the folder.
-  if (dir.native().find('\0') != std::string::npos) {
-    problems.push_back(fmt::format("output.dir: {} holds a NUL byte, where the file system would end the path; give "
-                                   "the path without it",
-                                   json(dir.string()).dump()));
+  if (holds_nul(dir.native())) {
+    problems.push_back(fmt::format("output.dir: {} {}", json(dir.string()).dump(), kHoldsNul));
     return problems;
   }
   fs::path last = dir;

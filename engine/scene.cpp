@@ -408,20 +408,10 @@ void parse_table(Reader& r, ProfileSpec& s, const std::filesystem::path& scene_d
       const std::filesystem::path absolute = std::filesystem::absolute(full, ec).lexically_normal();
       s.source.file = (ec ? full : absolute).string();
       // The resolved scene records the file's full path as JSON text, which is UTF-8 only: a scene in a folder whose
-      // name is not would solve and then fail to write it. A NUL byte would end the path for the file system.
-      const bool utf8 = [&] {
-        try {
-          (void)json(s.source.file).dump();
-          return true;
-        } catch (const json::type_error&) {
-          return false;
-        }
-      }();
-      if (given.native().find('\0') != std::string::npos)
-        r.problem(r.at("file"), fmt::format("{} holds a NUL byte, where the file system would end the path; give the "
-                                            "path without it",
-                                            describe(*file)));
-      else if (!utf8)
+      // name is not would solve and then fail to write it.
+      if (holds_nul(given.native()))
+        r.problem(r.at("file"), fmt::format("{} {}", describe(*file), kHoldsNul));
+      else if (!utf8_text(s.source.file))
         r.problem(r.at("file"),
                   fmt::format("{} is read from {}, which is not UTF-8 text as scene.resolved.json must record it; "
                               "move the scene and its table into a folder whose path is UTF-8",
@@ -1360,10 +1350,7 @@ void parse_output(Reader& top, Scene& s, std::vector<std::string>& problems) {
     if (r.find("dir"))  // optional: output/<name> below
       if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
         if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
-        if (dir->find('\0') != std::string::npos)  // the file system would take the part before it for the folder
-          r.problem("output.dir", fmt::format("{} holds a NUL byte, where the file system would end the path; give "
-                                              "the path without it",
-                                              json(*dir).dump()));
+        if (holds_nul(*dir)) r.problem("output.dir", fmt::format("{} {}", json(*dir).dump(), kHoldsNul));
         s.output_dir = *dir;
       }
     s.plots = r.boolean("plots", true).value_or(true);
@@ -1916,6 +1903,17 @@ json default_scene_json(const std::string& effect) {
     if (effect.empty() || name == effect || name == "tangential") j["effects"][name] = value;
   return parse_scene(j).to_json();
 }
+
+bool utf8_text(const std::string& text) {
+  try {
+    (void)json(text).dump();
+    return true;
+  } catch (const json::type_error&) {
+    return false;
+  }
+}
+
+bool holds_nul(std::string_view path) { return path.find('\0') != std::string_view::npos; }
 
 std::string fnv1a64(std::string_view bytes) {
   std::uint64_t hash = 14695981039346656037ull;

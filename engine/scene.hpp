@@ -239,4 +239,12 @@ std::vector<std::string> default_effect_words();
 // file, and of each file a results folder's marker lists.
 std::string fnv1a64(std::string_view bytes);
 
+// Whether `text` is UTF-8, which the JSON fretwear writes (summary.json, scene.resolved.json) must be.
+bool utf8_text(const std::string& text);
+// A path holding a NUL byte: every call of the file system would end it there, and reach another file or folder.
+// A problem says of it kHoldsNul.
+bool holds_nul(std::string_view path);
+inline constexpr const char* kHoldsNul =
+    "holds a NUL byte, where the file system would end the path; give the path without it";
+
 }  // namespace fretwear

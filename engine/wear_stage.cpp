@@ -527,6 +527,12 @@ class WearRun {
         blocks_(block),
         frames_(frames) {
     stage_.cycles_reached = times_.back();  // until a stop says otherwise
+    // Under load.blocks the run's cycles are all the blocks': this block's end is not the run's.
+    total_ = times_.back();
+    if (blocks_) {
+      total_ = 0.0;
+      for (const LoadBlock& b : scene_.blocks) total_ += b.cycles;
+    }
   }
   const std::vector<double>& state() const { return w_; }
 
@@ -562,6 +568,7 @@ class WearRun {
   WearContact& contact_;
   WearStage& stage_;
   const std::vector<double> times_;
+  double total_ = 0.0;  // the cycles the progress counts to (WearProgress::total)
   std::vector<double> w_;
   int block_;
   const BlockProgress* blocks_;
@@ -660,14 +667,7 @@ bool WearRun::boundary(const DriveState& at, bool recorded, Save& save) {
   double area = 0.0;
   for (double wi : w_) area += wi * h;
   const double fraction = stage_.asymptote.worn_area > 0.0 ? area / stage_.asymptote.worn_area : 0.0;
-  // Under load.blocks the run's cycles, all blocks', and the block it stands in; this block's end is not the run's.
-  double total = times_.back();
-  if (blocks_) {
-    total = 0.0;
-    for (const LoadBlock& b : scene_.blocks) total += b.cycles;
-  }
-  const WearProgress progress{at.N, total, at.dt, fraction, int(at.steps), blocks_ ? blocks_->block : -1,
-                              int(scene_.blocks.size())};
+  const WearProgress progress{at.N, total_, at.dt, fraction, int(at.steps), block_, int(scene_.blocks.size())};
   if (control_.progress) control_.progress(progress);
   const bool stop = control_.stop_requested && control_.stop_requested(progress);
   const bool due =

@@ -83,18 +83,12 @@ std::string quoted(const fs::path& path) {
   return json(path.string()).dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-// A NUL byte ends a path for every call of the file system, which would take the part before it for the path and so
-// reach another file or folder: a path holding one is refused, with this said of it.
-bool holds_nul(const fs::path& path) { return path.native().find('\0') != std::string::npos; }
-constexpr const char* kHoldsNul =
-    "holds a NUL byte, where the file system would end the path; give the path without it";
-
 SceneArgument scene_argument(py::handle arg) {
   const py::module_ os = py::module_::import("os");
   try {
     if (py::isinstance<py::str>(arg) || py::isinstance<py::bytes>(arg) || py::isinstance(arg, os.attr("PathLike"))) {
       const fs::path path = path_argument(arg);
-      if (holds_nul(path)) raise_scene_error({fmt::format("{}: {}", quoted(path), kHoldsNul)});
+      if (holds_nul(path.native())) raise_scene_error({fmt::format("{}: {}", quoted(path), kHoldsNul)});
       return {load_scene(path), path};
     }
     if (!py::isinstance<py::dict>(arg))

@@ -9,6 +9,7 @@
 // A closed cycle repeats once steady: the energy to 1e-12 relative (kRepeat = 1e-9); the traction to the CG
 // tolerance (1e-8 of an increment), measured 8.4e-8 f p0 (kRepeatTraction = 1e-6 f p0, as test_cycle_incremental's).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -33,6 +34,17 @@ namespace {
 constexpr double kSame = 1e-10;
 constexpr double kRepeat = 1e-9;
 constexpr double kRepeatTraction = 1e-6;
+
+// The shakedown history: P from 1 to 0.6 and back under a constant Q, [t, P, Q, σ] as the scene gives it, and as
+// the solver's load.
+std::vector<std::array<double, 4>> shakedown_points(double P, double Q) {
+  return {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}};
+}
+CyclicLoad shakedown_load(double P, double Q) {
+  CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0, {}};
+  for (const auto& pt : shakedown_points(P, Q)) load.history.push_back({pt[0], pt[1], pt[2], 0.0});  // σ = 0
+  return load;
+}
 
 }  // namespace
 
@@ -77,8 +89,7 @@ TEST_CASE("load history: a constant Q while P drops and recovers slips the edges
   s.Q_ratio.reset();
   const Model m = make_model(s);
   const NormalResult n = solve_normal(s, m);
-  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
-                        {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}}};
+  const CyclicLoad load = shakedown_load(P, Q);
   IncrementalSlipOptions o;
   o.cycles = 3;
   const IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve_history(n.state, load, m.g0);
@@ -128,11 +139,10 @@ TEST_CASE("load history: a history that shakes down is reported, and worn, by it
   const double P = 1e5, Q = 0.4 * test::kHertzF * P;
   Scene s = test::hertz_wear(P, 0.0, 1e7, 1024);
   s.Q_ratio.reset();
-  s.history = {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}};
+  s.history = shakedown_points(P, Q);
   const Model m = make_model(s);
   const NormalResult n = solve_normal(s, m);
-  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
-                        {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}}};
+  const CyclicLoad load = shakedown_load(P, Q);
   IncrementalSlipOptions first_only;
   first_only.steady_cycles_max = 0;
   const IncrementalResult first = IncrementalSlipSolver(*m.kernel, first_only).solve_history(n.state, load, m.g0);
@@ -174,11 +184,10 @@ TEST_CASE("load history: a march capped before its cycle repeats says so, and th
   const double P = 1e5, Q = 0.4 * test::kHertzF * P;
   Scene s = test::hertz_cycle(P, 0.0, 256);
   s.Q_ratio.reset();
-  s.history = {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}};
+  s.history = shakedown_points(P, Q);
   const Model m = make_model(s);
   const NormalResult n = solve_normal(s, m);
-  const CyclicLoad load{P, 0.0, test::kHertzF, 0.0, 0.0,
-                        {{0.0, P, Q, 0.0}, {1.0, 0.6 * P, Q, 0.0}, {2.0, P, Q, 0.0}}};
+  const CyclicLoad load = shakedown_load(P, Q);
   IncrementalSlipOptions capped;
   capped.steady_cycles_max = 1;  // the first cycle slips and the second does not: one cycle cannot show it repeats
   const IncrementalResult r = IncrementalSlipSolver(*m.kernel, capped).solve_history(n.state, load, m.g0);

@@ -139,11 +139,14 @@ std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const Norm
     return crack_sifs(model.grid, cycle_phases(scene, normal, cycle), x, c, 0.0);
   }
   std::vector<SifSet> sifs;
+  const double records = double(wear->records.size());
+  double done = 0.0;
   for (const WearRecord& rec : wear->records) {
-    stop_point(stop, "crack");
+    stop_point(stop, {"crack", done++, records, "records"});
     auto sets = crack_sifs(model.grid, cycle_phases(scene, rec.p, &rec.q), x, c, rec.cycles);
     sifs.insert(sifs.end(), sets.begin(), sets.end());
   }
+  stop_point(stop, {"crack", records, records, "records"});
   return sifs;
 }
 

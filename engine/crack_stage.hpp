@@ -33,7 +33,7 @@ std::vector<SifSet> crack_sifs(const Grid& grid, const std::vector<Phase>& phase
 double crack_position(const CrackEffect& effect, const NormalResult& normal);
 
 // The stage: the SIFs at crack_position() for the unworn contact, or for every wear record; `stop` is asked before
-// each state's (stop_point()).
+// each state's and after the last, with the records done (stop_point()).
 std::vector<SifSet> run_crack(const Scene& scene, const Model& model, const NormalResult& normal,
                               const CycleStage* cycle, const WearStage* wear, const StopCheck& stop = {});
 

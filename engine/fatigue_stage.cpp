@@ -25,11 +25,15 @@ const StressMap* find_map(const std::vector<StressMap>& maps, double cycles, con
 // critical; the report then names the trailing edge (−x), to within the normal solve's tolerance.
 constexpr double kTie = 1e-6;
 
-SwtMap swt_map(const StressMap& top, const StressMap& bottom, const Material& specimen, PlaneState plane) {
+// `stop` is asked before each row, with the rows done.
+SwtMap swt_map(const StressMap& top, const StressMap& bottom, const Material& specimen, PlaneState plane,
+               const StopCheck& stop) {
   SwtMap out;
   out.x = top.x, out.y = top.y;
   out.points.resize(top.sigma.size());
   for (std::size_t k = 0; k < top.sigma.size(); ++k) {
+    if (k % out.x.size() == 0)
+      stop_point(stop, {"stress", double(k / out.x.size()), double(out.y.size()), "rows of the SWT maps"});
     const Stress states[2] = {top.sigma[k], bottom.sigma[k]};
     out.points[k] = swt_critical_plane(states, specimen, plane);
     if (k == 0 || out.points[k].swt > out.max.swt + kTie * std::abs(out.max.swt)) {
@@ -170,16 +174,22 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const std::vector<RecordPhases>& states,
                                         const std::vector<StressMap>& maps, const CycleStage& cycle,
-                                        const WearStage* wear) {
+                                        const WearStage* wear, const StopCheck& stop) {
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_optional<FatigueStage>();
+  // The maps' rows, counted for `stop` across the records.
+  double rows = 0.0, before = 0.0;
+  for (const RecordPhases& state : states)
+    if (const StressMap* m = find_map(maps, state.cycles, "top")) rows += double(m->y.size());
+  const StopCheck counted = offset_parts(stop, &before, rows);
   for (std::size_t k = 0; k < states.size(); ++k) {
     const double cycles = states[k].cycles;
     const StressMap *map_top = find_map(maps, cycles, "top"), *map_bottom = find_map(maps, cycles, "bottom");
     if (!map_top || !map_bottom) return std::nullopt;
     FatigueRecord& rec = out->records.emplace_back();
     rec.cycles = cycles;
-    rec.swt = swt_map(*map_top, *map_bottom, scene.specimen, scene.plane);
+    rec.swt = swt_map(*map_top, *map_bottom, scene.specimen, scene.plane, counted);
+    before += double(map_top->y.size());
     if (cycle.result.regime == Regime::gross_slip) continue;
     // The slip of the state the maps show: the cycle's peak-to-peak range, or the wear record's slip travelled per
     // cycle, which is twice the range (each slip-zone point runs over its range once each way).
@@ -192,6 +202,7 @@ std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, co
     if (range.size() == std::size_t(grid.n))
       rec.ruiz = ruiz_along_surface(SurfaceTractions{grid, top.p, top.q, top.sigma_bulk}, range);
   }
+  stop_point(stop, {"stress", rows, rows, "rows of the SWT maps"});
   out->seconds = seconds_since(t0);
   return out;
 }

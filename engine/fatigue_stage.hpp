@@ -14,6 +14,7 @@
 #include "engine/cycle_stage.hpp"
 #include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
+#include "engine/stop.hpp"
 #include "engine/stress_stage.hpp"
 #include "engine/wear_stage.hpp"
 
@@ -43,9 +44,11 @@ struct FatigueStage {
 // The measures from the stress maps just computed. states: record_phases(), the loads of every state; maps:
 // run_stress's output for them, "top" and "bottom" of each; cycle: the cycle solved; wear: the wear stage or null
 // (each record's slip is used then, the cycle's otherwise). None when the maps hold no "top" and "bottom" pair.
+// `stop` is asked before each row of each SWT map, and once all are done, with the rows done of all the maps'
+// (stop_point(); the stage is "stress", whose time this is part of).
 std::optional<FatigueStage> run_fatigue(const Scene& scene, const Grid& grid, const std::vector<RecordPhases>& states,
                                         const std::vector<StressMap>& maps, const CycleStage& cycle,
-                                        const WearStage* wear);
+                                        const WearStage* wear, const StopCheck& stop = {});
 
 // Adds the stress.swt_* and stress.ruiz_* keys of the last record to the summary's "stress" object.
 // swt_max_singular: the maximum sits at a singular edge (engine/stress_stage.hpp, SingularEdges).

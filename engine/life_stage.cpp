@@ -277,7 +277,7 @@ LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& n
     stage.initiation->singular = singular_edges(normal, &cycle, wear, {}).at(stage.initiation->x, 0.0);
     N_start = stage.initiation->cycles;
   }
-  stop_point(stop, "life");
+  stop_point(stop, {"life", 1.0, 2.0, "parts (initiation, growth)"});
   if (!effect.growth) {
     stage.total_cycles = N_start;
     stage.fate = N_start <= effect.cycles_max ? "initiation" : "runout";

@@ -71,8 +71,8 @@ struct LifeStage {
   double final_length = 0.0;  // m (0 without growth)
 };
 
-// The stage, over the unworn contact (wear null) or every wear record; `stop` is asked between initiation and growth
-// (stop_point()).
+// The stage, over the unworn contact (wear null) or every wear record; `stop` is asked between initiation and growth,
+// the first of its two parts done (stop_point()).
 LifeStage run_life(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
                    const WearStage* wear, const StopCheck& stop = {});
 

@@ -73,26 +73,21 @@ std::string clock_time(double seconds) {
   return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
 }
 
-// Progress of a wear run on stderr. On a terminal one line, rewritten in place at most four times a second;
-// elsewhere (a log, a batch job) a line each time another tenth of the cycles is done, or a minute has passed.
+// Progress of a run on stderr: the wear stage's cycles, and the parts of the stress, crack and life stages that run
+// longer than a few seconds. On a terminal one line, rewritten in place at most four times a second; elsewhere (a log,
+// a batch job) a line each time another tenth of the stage is done, or a minute has passed.
 class ProgressLine {
  public:
-  ProgressLine(bool enabled, bool terminal) : enabled_(enabled), terminal_(terminal) {}
+  // quiet_stage: how long a stage runs before its parts are shown (s).
+  ProgressLine(bool enabled, bool terminal, double quiet_stage = 2.0)
+      : enabled_(enabled), terminal_(terminal), quiet_stage_(quiet_stage) {}
   ~ProgressLine() { finish(); }
   bool enabled() const { return enabled_; }
 
   void update(const WearProgress& p) {
     const auto now = clock::now();
     if (!first_) first_ = std::pair{now, p.cycles};
-    const int tenth = int(std::floor(10.0 * p.cycles / p.total));
-    if (terminal_) {
-      if (shown_ && now - last_ < std::chrono::milliseconds(250) && p.cycles < p.total) return;
-    } else if (shown_ && tenth <= tenth_ && now - last_ < std::chrono::minutes(1)) {
-      return;
-    }
-    last_ = now;
-    shown_ = true;
-    tenth_ = tenth;
+    if (!due(now, p.cycles / p.total, p.cycles >= p.total)) return;
     const double elapsed = std::chrono::duration<double>(now - first_->first).count();
     const double done = p.cycles - first_->second;  // in this process (a resumed run started part way)
     std::string left = "--";
@@ -103,8 +98,27 @@ class ProgressLine {
     const std::string block = p.block >= 0 ? fmt::format(" (load.blocks[{}] of {})", p.block, p.blocks) : "";
     const std::string line = fmt::format("wear: {:.0f} / {:.0f} cycles{}, ΔN {:.3g}{}, {} elapsed, ~{} left", p.cycles,
                                          p.total, block, p.dN, limit, clock_time(elapsed), left);
-    std::cerr << (terminal_ ? "\r\033[K" + line : line + "\n") << std::flush;
+    show(line);
   }
+
+  // A stage's parts (StagePart), once it has run for kQuietStage: a short stage says nothing.
+  void update(const StagePart& p) {
+    if (p.total <= 0.0) return;
+    const auto now = clock::now();
+    if (stage_ != p.stage || unit_ != p.unit) {  // a new stage or part of one: its own line, its own clock
+      finish();
+      stage_ = p.stage;
+      unit_ = p.unit;
+      stage_start_ = now;
+      tenth_ = -1;
+    }
+    const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
+    if (elapsed < quiet_stage_ || !due(now, p.done / p.total, p.done >= p.total)) return;
+    const std::string left = p.done > 0.0 ? clock_time((p.total - p.done) * elapsed / p.done) : "--";
+    show(fmt::format("{}: {:.0f} / {:.0f} {}, {} elapsed, ~{} left", p.stage, p.done, p.total, p.unit,
+                     clock_time(elapsed), left));
+  }
+
   void finish() {
     if (shown_ && terminal_) std::cerr << "\n" << std::flush;
     shown_ = false;
@@ -112,10 +126,31 @@ class ProgressLine {
 
  private:
   using clock = std::chrono::steady_clock;
+
+  // Whether to show the line now, at `share` of the stage done (`last`: all of it).
+  bool due(clock::time_point now, double share, bool last) {
+    const int tenth = int(std::floor(10.0 * share));
+    if (terminal_) {
+      if (shown_ && now - last_ < std::chrono::milliseconds(250) && !last) return false;
+    } else if (shown_ && tenth <= tenth_ && now - last_ < std::chrono::minutes(1)) {
+      return false;
+    }
+    last_ = now;
+    tenth_ = tenth;
+    return true;
+  }
+  void show(const std::string& line) {
+    shown_ = true;
+    std::cerr << (terminal_ ? "\r\033[K" + line : line + "\n") << std::flush;
+  }
+
   bool enabled_, terminal_, shown_ = false;
+  double quiet_stage_;
   int tenth_ = -1;
   clock::time_point last_{};
   std::optional<std::pair<clock::time_point, double>> first_;
+  std::string stage_, unit_;  // the stage whose parts are shown, and what they count ("": the wear stage or none)
+  clock::time_point stage_start_{};
 };
 
 // Each warning on its own line on stderr (also with --quiet: a result the grid cannot resolve is never silent).
@@ -307,7 +342,10 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
   }
   OutputFolder out(scene.output_dir, OutputCommand::run);
   if (!quiet) std::cerr << fmt::format("fretwear: {}: normal contact on {} cells\n", scene.name, scene.cells);
-  ProgressLine progress(!quiet, ::isatty(STDERR_FILENO) != 0);
+  // Tests only: FRETWEAR_STAGE_QUIET_S, how long a stage runs before its parts are shown (s; 2 by default), so that a
+  // test sees the lines of stages that take milliseconds.
+  const char* quiet_stage = std::getenv("FRETWEAR_STAGE_QUIET_S");
+  ProgressLine progress(!quiet, ::isatty(STDERR_FILENO) != 0, quiet_stage ? std::atof(quiet_stage) : 2.0);
   if (scene.wear) {
     // Tests only, at each step boundary: FRETWEAR_STEP_PAUSE_MS, a pause, so that a test's signal lands mid-run;
     // FRETWEAR_STOP_AT_STEP=N, SIGINT raised at the first boundary after N accepted steps (a Ctrl-C there, exactly);
@@ -338,7 +376,9 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
   // short, so that a test sees what a run that fails after its first stages writes.
   const char* stop_in = std::getenv("FRETWEAR_STOP_IN_STAGE");
   const char* fail_in = std::getenv("FRETWEAR_NOT_CONVERGED_IN_STAGE");
-  control.stop_now = [stop_in, fail_in](const char* stage) {
+  control.stop_now = [stop_in, fail_in, &progress](const StagePart& part) {
+    const char* stage = part.stage;
+    if (progress.enabled()) progress.update(part);
     if (fail_in && std::string_view(fail_in) == stage)
       throw ConvergenceError(fmt::format("{}: the solve stopped short of its tolerance "
                                          "(FRETWEAR_NOT_CONVERGED_IN_STAGE, a test hook)",

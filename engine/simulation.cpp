@@ -73,7 +73,8 @@ RunResult Simulation::run(const WearControl* control) const {
         auto maps = run_stress(scene_, model, r.normal, cycle, wear, stop);
         if (setup.effects.fatigue)  // the fatigue measures from each state's top and bottom maps
           r.fatigue =
-              run_fatigue(scene_, model.grid, record_phases(scene_, r.normal, cycle, wear), maps, *cycle, wear);
+              run_fatigue(scene_, model.grid, record_phases(scene_, r.normal, cycle, wear), maps, *cycle, wear,
+                          stop);
         return maps;
       });
     }
@@ -91,7 +92,9 @@ RunResult Simulation::run(const WearControl* control) const {
       stage = "life";
       r.life = timed(r.timings.life, [&] {
         stop_point(stop, "life");
-        return run_life(scene_, model, r.normal, *cycle, wear, stop);
+        auto life = run_life(scene_, model, r.normal, *cycle, wear, stop);
+        stop_point(stop, {"life", 2.0, 2.0, "parts (initiation, growth)"});
+        return life;
       });
     }
   } catch (const ConvergenceError& e) {

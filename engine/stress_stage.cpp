@@ -107,6 +107,8 @@ std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& p
   for (int i = 0; i < effect.nx; ++i) x_all.push_back(x_lo + (x_hi - x_lo) * i / (effect.nx - 1));
   for (int j = 0; j < effect.ny; ++j) y_all.push_back(depth * (j + 0.5) / effect.ny);
   std::vector<StressMap> out;
+  const double columns = double(phases.size() * strided(effect.nx, stride).size());
+  double done = 0.0;
   for (const Phase& ph : phases) {
     const SurfaceTractions t{grid, ph.p, ph.q, ph.sigma_bulk};
     StressMap m;
@@ -116,7 +118,7 @@ std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& p
     for (std::size_t j : strided(int(y_all.size()), stride)) m.y.push_back(y_all[j]);
     m.sigma.resize(m.x.size() * m.y.size());
     for (std::size_t i = 0; i < m.x.size(); ++i) {
-      stop_point(stop, "stress");
+      stop_point(stop, {"stress", done++, columns, "map columns"});
       auto column = stress_along_depth(t, m.x[i], m.y);
       column.front() = surface_stress(t, grid, m.x[i]);  // the first row, y = 0
       for (std::size_t j = 0; j < m.y.size(); ++j) m.sigma[j * m.x.size() + i] = column[j];
@@ -149,13 +151,22 @@ std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const 
   const double xl = normal.zones.front().left.x, xr = normal.zones.back().right.x, half = 0.5 * (xr - xl);
   const double depth = scene.stress->depth > 0.0 ? scene.stress->depth : half;
   const std::vector<RecordPhases> states = record_phases(scene, normal, cycle, wear);
+  auto stride = [&](std::size_t k) { return k + 1 == states.size() ? 1 : kRecordStride; };
+  // The columns of every state's maps, counted for `stop` across the stage.
+  auto state_columns = [&](std::size_t k) {
+    return double(states[k].phases.size() * strided(scene.stress->nx, stride(k)).size());
+  };
+  double columns = 0.0, before = 0.0;
+  for (std::size_t k = 0; k < states.size(); ++k) columns += state_columns(k);
+  const StopCheck counted = offset_parts(stop, &before, columns);
   std::vector<StressMap> out;
   for (std::size_t k = 0; k < states.size(); ++k) {
-    const int stride = k + 1 == states.size() ? 1 : kRecordStride;
     auto maps = stress_maps(model.grid, states[k].phases, xl - 0.5 * half, xr + 0.5 * half, depth, *scene.stress,
-                            states[k].cycles, stride, stop);
+                            states[k].cycles, stride(k), counted);
+    before += state_columns(k);
     out.insert(out.end(), std::make_move_iterator(maps.begin()), std::make_move_iterator(maps.end()));
   }
+  stop_point(stop, {"stress", columns, columns, "map columns"});
   return out;
 }
 

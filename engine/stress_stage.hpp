@@ -42,7 +42,7 @@ inline constexpr int kRecordStride = 2;
 // The surface stresses at x (y = 0): linear between the two nearest cell centres (the source says why).
 Stress surface_stress(const SurfaceTractions& t, const Grid& grid, double x);
 
-// `stop` is asked before each column (stop_point()).
+// `stop` is asked before each column, with the columns done of all the phases' (stop_point()).
 std::vector<StressMap> stress_maps(const Grid& grid, const std::vector<Phase>& phases, double x_lo, double x_hi,
                                    double depth, const StressEffect& effect, double cycles = 0.0, int stride = 1,
                                    const StopCheck& stop = {});
@@ -65,7 +65,8 @@ std::vector<Phase> final_phases(const Scene& scene, const NormalResult& normal, 
 // The stage: the maps over the contact and half its width on either side, down to effects.stress.depth (the contact
 // half-width when 0), of every state of record_phases(), in its order, each state's phases together; the last state
 // on the full map, the earlier ones with stride kRecordStride.
-// `stop` is asked before each column of each map (stop_point()).
+// `stop` is asked before each column of each map, and once all are done, with the columns done of all the maps'
+// (stop_point()).
 std::vector<StressMap> run_stress(const Scene& scene, const Model& model, const NormalResult& normal,
                                   const CycleStage* cycle, const WearStage* wear, const StopCheck& stop = {});
 

@@ -155,7 +155,7 @@ class Result {
 class SignalCheck {
  public:
   bool operator()(const WearProgress&) { return check(); }
-  bool operator()(const char*) { return check(); }
+  bool operator()(const StagePart&) { return check(); }
 
   bool check() {
     py::gil_scoped_acquire acquire;

@@ -155,6 +155,45 @@ TEST_CASE("a wear run under load.blocks reports its progress against all its cyc
   CHECK_MESSAGE(lines.back().rfind("wear: 10000 / 10000 cycles (load.blocks[2] of 3)", 0) == 0, lines.back());
 }
 
+TEST_CASE("the stress, crack and life stages report their parts once they run for a few seconds") {
+  // Worn, with maps, SWT, cracks and a life: 9 records. FRETWEAR_STAGE_QUIET_S=0 shows the lines of stages that take
+  // milliseconds; by default (2 s) this run shows none of them.
+  Scratch s;
+  json scene = json::parse(read_file(fs::path(FRETWEAR_SOURCE_DIR) / "examples" / "life_slip_amplitude.json"));
+  scene["grid"]["cells"] = 256;
+  scene["effects"]["stress"] = {{"nx", 41}, {"ny", 20}};
+  scene["effects"]["crack"] = {{"at", "trailing_edge"}, {"lengths", {1e-5, 2e-5}}};
+  scene["output"] = {{"dir", "out"}, {"plots", false}};
+  s.write("life.json", scene.dump());
+  const Outcome r = s.fretwear({"run", "life.json"}, {{"FRETWEAR_STAGE_QUIET_S", "0"}});
+  REQUIRE_MESSAGE(r.exited(kDone), r.describe());
+  const json summary = json::parse(read_file(s.work / "out" / "summary.json"));
+  const int records = summary["wear"]["records"].get<int>();  // the unworn state and 8 records
+  REQUIRE(records == 9);
+  // Each state's top and bottom maps, the last on all 41 columns and 21 rows (the surface and 20 below it), the
+  // earlier ones on every second (21 and 11).
+  const int columns = (records - 1) * 2 * 21 + 2 * 41, rows = (records - 1) * 11 + 21;
+  const std::pair<std::string, int> parts[] = {{"stress: ", columns}, {"stress: ", rows}, {"crack: ", records},
+                                               {"life: ", 2}};
+  const char* units[] = {"map columns", "rows of the SWT maps", "records", "parts (initiation, growth)"};
+  for (int k = 0; k < 4; ++k) {
+    const std::string suffix = fmt::format(" / {} {}, ", parts[k].second, units[k]);
+    std::vector<double> done;
+    std::istringstream in(r.err);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(parts[k].first, 0) == 0 && line.find(suffix) != std::string::npos)
+        done.push_back(std::stod(line.substr(parts[k].first.size())));
+    INFO(units[k], "\n", r.err);
+    REQUIRE(!done.empty());
+    CHECK(std::is_sorted(done.begin(), done.end()));
+    CHECK(int(done.size()) >= std::min(10, parts[k].second));  // in a log, a line at each tenth of the stage
+    CHECK(done.back() == parts[k].second);  // the stage's last line: all of it done
+  }
+  const Outcome quiet = s.fretwear({"run", "life.json"});
+  REQUIRE_MESSAGE(quiet.exited(kDone), quiet.describe());
+  for (const char* stage : {"\nstress: ", "\ncrack: ", "\nlife: "}) CHECK_MESSAGE(quiet.err.find(stage) == std::string::npos, quiet.err);
+}
+
 TEST_CASE("validate writes nothing, defaults prints a valid scene, --version, and usage errors exit 2") {
   Scratch s;
   s.write("s.json", kGood);

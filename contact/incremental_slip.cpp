@@ -501,6 +501,19 @@ class IncrementalSlipSolver::Run {
       change = std::max(change, std::abs(b.q_bottom[i] - a.q_bottom[i]));
     return change <= kSteadyTolerance * scale;
   }
+  // True when the last cycle ended in the state it began in: its traction at the end within kSteadyTolerance of the
+  // larger top traction of the one at its start. The next cycle, marched from that state through the same loads,
+  // would then repeat it: the march has reached its steady cycle a cycle before repeated() can tell. (The traction is
+  // the state: u = K q, and the pressure follows from q and the load.)
+  bool closed() const {
+    const auto& c = result_.cycles;
+    if (c.empty() || cycle_start_q_.size() != state_.q.size()) return false;
+    double scale = 0.0, change = 0.0;
+    for (double v : c.back().q_top) scale = std::max(scale, std::abs(v));
+    for (std::size_t i = 0; i < state_.q.size(); ++i)
+      change = std::max(change, std::abs(state_.q[i] - cycle_start_q_[i]));
+    return change <= kSteadyTolerance * scale;
+  }
 
  protected:
   Run(const IncrementalSlipSolver& solver, const ContactState& contact, const ReferenceDatum* datum,
@@ -535,6 +548,7 @@ class IncrementalSlipSolver::Run {
   double shift_ = 0.0;          // λ summed over the increments (m)
   std::vector<LoopPoint> first_loading_;
   std::vector<double> w_, w_min_, w_max_;  // the slip per cell over the cycle being marched, and its extremes (m)
+  std::vector<double> cycle_start_q_;      // the traction the cycle being marched began from (Pa)
   IncrementalResult result_;
   const NormalCoupling* coupling_;
   const bool coupled_;          // β ≠ 0
@@ -720,10 +734,13 @@ IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& conta
   // settling_increments is not compared with one at increments_per_cycle.
   const bool settles_coarser = options_.cycles > 1 && options_.settling_increments > 0 &&
                                options_.settling_increments != options_.increments_per_cycle;
+  // The last cycle of the loop above was marched at increments_per_cycle, as every later one is: one that ended
+  // where it began is steady (Run::closed) whatever came before it.
   const auto comparable = [&] { return !settles_coarser || cycle - 2 >= options_.cycles; };
   bool repeated = true;
   if (options_.steady_cycles_max > 0)
-    while (!(repeated = comparable() && run.repeated()) && cycle <= options_.steady_cycles_max) run.cycle(cycle++);
+    while (!(repeated = run.closed() || (comparable() && run.repeated())) && cycle <= options_.steady_cycles_max)
+      run.cycle(cycle++);
   IncrementalResult result = run.result();
   result.repeated = repeated;
   result.cycles_marched = cycle - 1;
@@ -762,6 +779,7 @@ void IncrementalSlipSolver::Run::count(const SolveSummary& s) {
 
 CycleResult IncrementalSlipSolver::Run::begin_cycle() {
   CycleResult r;
+  cycle_start_q_ = state_.q;
   w_.assign(n_, 0.0);
   w_min_.assign(n_, 0.0);
   w_max_.assign(n_, 0.0);

@@ -141,9 +141,9 @@ struct IncrementalSlipOptions {
   int increments_per_cycle = 40;  // load steps over +Q → −Q → +Q (the first loading 0 → Q takes a quarter of
                                   // them); a multiple of 4 and ≥ 4, so that Q = 0 and ±Q are increment ends
   int cycles = 1;                 // steady cycles after the first loading; ≥ 1
-  // solve_history() only: after those, cycles until the last one repeats the one before it at the same increments
-  // (the traction at the top and the bottom of both within 1e-6 of the largest top traction), at most this many
-  // cycles in all; 0: exactly `cycles`. A history reaches its steady cycle only after several cycles where the first
+  // solve_history() only: after those, cycles until the last one ends in the traction it began from, or repeats the
+  // one before it at the same increments (the traction at the top and the bottom of both), within 1e-6 of the
+  // largest top traction, at most this many cycles in all; 0: exactly `cycles`. A history reaches its steady cycle only after several cycles where the first
   // slips and the later ones do not (shakedown); IncrementalResult::repeated says whether it did.
   int steady_cycles_max = 10;
   // Increments of the cycles before the last one (the first loading takes a quarter of them): 0 for
@@ -210,8 +210,8 @@ struct IncrementalResult {
   // The last cycle's reloading half was the mirror image of its unloading half (mirror_half_cycle, on a symmetric
   // contact): increment_energy, increment_Q and increment_shift then hold the marched increments only.
   bool mirrored = false;
-  // solve_history() with steady_cycles_max > 0: the last cycle repeated the one before it (false: the cap came
-  // first, and the last cycle may not be the steady one).
+  // solve_history() with steady_cycles_max > 0: the last cycle ended where it began, or repeated the one before it
+  // (false: the cap came first, and the last cycle may not be the steady one).
   bool repeated = true;
   int cycles_marched = 0;  // cycles after the first loading
   std::vector<double> increment_energy;  // h Σ q Δw of every increment, the first loading's included (J/m)

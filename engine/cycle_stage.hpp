@@ -53,8 +53,8 @@ struct CycleStage {
     int half_increments = 0;  // the increments per cycle of the second march
   };
   std::vector<HistoryEnergy> history_energy;
-  // A load history: the cycles marched after the first loading until one repeated the one before it (the steady
-  // cycle reported; IncrementalSlipOptions::steady_cycles_max), and whether one did within that cap.
+  // A load history: the cycles marched after the first loading until one ended where it began or repeated the one
+  // before it (the steady cycle reported; IncrementalSlipOptions::steady_cycles_max), and whether one did within that cap.
   int history_cycles = 0;
   bool history_steady = true;
 };

@@ -158,23 +158,23 @@ void history_increments(const Scene& scene, const CycleStage& cycle, std::vector
   }
 }
 
-// A load history marched to IncrementalSlipOptions::steady_cycles_max cycles without one repeating the one before
-// it: the cycle reported (and worn with) may not be the steady one.
+// A load history marched to IncrementalSlipOptions::steady_cycles_max cycles without one ending where it began or
+// repeating the one before it: the cycle reported (and worn with) may not be the steady one.
 void history_unsteady(const RunResult& result, std::vector<Warning>& out) {
   const long worn = result.wear ? result.wear->unsteady_history_responses : 0;
   if (result.cycle->history_steady && worn == 0) return;
   std::string what;
   if (!result.cycle->history_steady)
-    what = fmt::format("the load history's cycle did not repeat the one before it within {} cycles, so the cycle "
-                       "reported may not be the steady one",
+    what = fmt::format("the load history's cycle neither ended where it began nor repeated the one before it "
+                       "within {} cycles, so the cycle reported may not be the steady one",
                        result.cycle->history_cycles);
   if (worn > 0)
     what += fmt::format("{}{} of the wear run's cycle responses did not either, so its wear rate may be that of a "
                         "cycle still settling",
                         what.empty() ? "" : "; ", worn);
   out.push_back({"history_unsteady",
-                 what + " (the traction at the top and the bottom of the cycle within 1e-6 of its largest; "
-                        "docs/METHODS.md, \"Load histories\")"});
+                 what + " (the traction at its end, or at the top and the bottom of the cycle, within 1e-6 of its "
+                        "largest; docs/METHODS.md, \"Load histories\")"});
 }
 
 // Each contact zone's slip zones at the top of the cycle: between its ends and the stick zones inside it.

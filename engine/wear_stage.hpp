@@ -122,7 +122,7 @@ struct WearStage {
   Scar pad, specimen;
   int unconverged_steps = 0;  // implicit steps rejected because a contact-implicit solve did not converge
   // Under a load history: cycle responses whose march reached IncrementalSlipOptions::steady_cycles_max cycles
-  // without one repeating the one before it.
+  // without one ending where it began or repeating the one before it.
   long unsteady_history_responses = 0;
   double mean_iterations_cycle = 0.0, mean_iterations_implicit = 0.0;  // CG iterations per warm-started solve
   bool interrupted = false;               // stopped on request before the last cycle (records hold what was done)

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -396,6 +397,27 @@ class ThreadDispatch final : public SweepDispatch {
     std::vector<std::jthread> pool;
     for (int t = 0; t < jobs_; ++t) pool.emplace_back(worker);
   }
+  std::vector<std::vector<std::string>> check_all(
+      std::size_t n, const std::function<std::vector<std::string>(std::size_t)>& check) override {
+    std::vector<std::vector<std::string>> out(n);
+    std::atomic<std::size_t> next{0};
+    std::mutex failing;
+    std::exception_ptr failure;
+    auto worker = [&] {
+      for (std::size_t k; (k = next++) < n;) try {
+          out[k] = check(k);
+        } catch (...) {
+          const std::lock_guard lock(failing);
+          if (!failure) failure = std::current_exception();
+        }
+    };
+    {
+      std::vector<std::jthread> pool;
+      for (std::size_t t = 0; t < std::min(std::size_t(jobs_), n); ++t) pool.emplace_back(worker);
+    }
+    if (failure) std::rethrow_exception(failure);
+    return out;
+  }
 
  private:
   int jobs_;
@@ -440,8 +462,8 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   result.dir = output_folder(base_scene, OutputCommand::sweep);
   result.root = dispatch->root();
 
-  // Every combination, validated before anything runs (in every process alike). A run's scene names its folder
-  // as it will be once the sweep is committed.
+  // Every combination, validated before anything runs (every process parses all, and checks the physics of its
+  // share; all learn every problem). A run's scene names its folder as it will be once the sweep is committed.
   std::vector<Scene> scenes;
   std::vector<std::string> problems = variation_problems(variations);
   double product = 1.0;  // in double: a product past any integer type is refused as well
@@ -465,6 +487,8 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     result.runs.push_back(std::move(run));
   }
   for (const std::string& p : name_runs(base_scene.name, variations, result.runs)) problems.push_back(p);
+  std::vector<std::vector<std::string>> run_problems(result.runs.size());  // each run's, said in the runs' order
+  std::vector<std::size_t> parsed;  // the run of each of `scenes`
   for (std::size_t r = 0; r < result.runs.size(); ++r) {
     const SweepRun& run = result.runs[r];
     json j = base;
@@ -479,11 +503,20 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
     j["output"] = {{"dir", (result.dir / "runs" / run.name).string()}, {"plots", base_scene.plots}};
     try {
       scenes.push_back(parse_scene(j, "scene", scene_file.parent_path()));  // a table's file beside the scene
-      for (const auto& p : physics_problems(scenes.back())) problems.push_back(run.name + ": " + p);
+      parsed.push_back(r);
     } catch (const SceneError& e) {
-      for (const auto& p : e.problems()) problems.push_back(run.name + ": " + p);
+      for (const auto& p : e.problems()) run_problems[r].push_back(run.name + ": " + p);
     }
   }
+  // The physics of every variant that parsed: its solves, shared among the threads or the ranks.
+  const auto physics = dispatch->check_all(scenes.size(), [&](std::size_t i) {
+    std::vector<std::string> out;
+    for (const auto& p : physics_problems(scenes[i])) out.push_back(result.runs[parsed[i]].name + ": " + p);
+    return out;
+  });
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    run_problems[parsed[i]].insert(run_problems[parsed[i]].end(), physics[i].begin(), physics[i].end());
+  for (const auto& each : run_problems) problems.insert(problems.end(), each.begin(), each.end());
   // The output folder is checked by the root alone, before it makes anything there (another process checking it
   // meanwhile could find the root's staging folder), and its verdict is every process's.
   if (result.root) {

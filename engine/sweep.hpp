@@ -76,6 +76,11 @@ class SweepDispatch {
   // learns each outcome by done(k, outcome), on one thread at a time and in the order they finish.
   virtual void run_all(const std::vector<std::size_t>& todo, const std::function<SweepOutcome(std::size_t)>& run,
                        const std::function<void(std::size_t, const SweepOutcome&)>& done) = 0;
+  // Calls check(k) once for each k < n, spread over the processes and their threads (a variant's checks solve its
+  // normal contact and first cycle), and returns in every process what each returned, indexed by k. An exception
+  // check throws is rethrown, in the process it was thrown in, once the others are done.
+  virtual std::vector<std::vector<std::string>> check_all(
+      std::size_t n, const std::function<std::vector<std::string>(std::size_t)>& check) = 0;
 };
 
 // The runs on `jobs` threads of this process, each taking the next run as soon as it is free.

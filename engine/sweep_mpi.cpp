@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <stdexcept>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -39,6 +40,7 @@ constexpr auto kPollEvery = std::chrono::milliseconds(1);
 constexpr int kTagResult = 1;  // rank → 0: the outcome of its last run (an empty object before the first), as JSON
 constexpr int kTagTask = 2;    // 0 → rank: the index of its next run, or −1: no more
 constexpr int kTagShare = 3;   // 0 → rank: share()'s text
+constexpr int kTagChecks = 4;  // rank → 0: check_all()'s results of its share, as JSON {"k": [texts], ...}
 
 MPI_Status wait_for(int source, int tag) {
   MPI_Status status;
@@ -97,6 +99,36 @@ class OpenMpiSweep final : public MpiSweep {
       return text;
     }
     return receive_text(wait_for(0, kTagShare));
+  }
+
+  // Rank r checks every k ≡ r (mod size), in turn; rank 0 gathers the results and shares them. A variant's checks
+  // take milliseconds and differ little: a fixed split serves. A check that throws in one rank throws in all, with
+  // its message, as when every rank checked every variant: none waits for another that has given up.
+  std::vector<std::vector<std::string>> check_all(
+      std::size_t n, const std::function<std::vector<std::string>(std::size_t)>& check) override {
+    if (size_ == 1) return thread_dispatch(jobs_)->check_all(n, check);
+    json mine = {{"texts", json::object()}};
+    for (std::size_t k = std::size_t(rank_); k < n; k += std::size_t(size_)) try {
+        if (auto texts = check(k); !texts.empty()) mine["texts"][std::to_string(k)] = std::move(texts);
+      } catch (const std::exception& e) {
+        if (!mine.contains("failure")) mine["failure"] = e.what();
+      }
+    std::string all;
+    if (rank_ != 0) {
+      send_text(mine.dump(), 0, kTagChecks);
+    } else {
+      for (int r = 1; r < size_; ++r) {
+        const json theirs = json::parse(receive_text(wait_for(r, kTagChecks)));
+        mine["texts"].update(theirs["texts"]);
+        if (theirs.contains("failure") && !mine.contains("failure")) mine["failure"] = theirs["failure"];
+      }
+      all = mine.dump();
+    }
+    const json shared = json::parse(share(all));
+    if (shared.contains("failure")) throw std::runtime_error(shared["failure"].get<std::string>());
+    std::vector<std::vector<std::string>> out(n);
+    for (const auto& [k, texts] : shared["texts"].items()) out[std::stoul(k)] = texts.get<std::vector<std::string>>();
+    return out;
   }
 
   void run_all(const std::vector<std::size_t>& todo, const std::function<SweepOutcome(std::size_t)>& run,

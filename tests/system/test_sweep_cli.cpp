@@ -219,6 +219,34 @@ std::vector<std::string> run_folders(const fs::path& out) {
 
 }  // namespace
 
+TEST_CASE("a sweep checks its variants' physics on all its threads: every problem once, in the runs' order, exit 2") {
+  // load.P past what half-plane elasticity can carry is refused once the variant's contact is solved (its mean
+  // pressure over E*): four of the six variants. The checks are shared among the threads; what is said is what one
+  // thread says, each run's problems in the runs' order (load.P varying fastest).
+  Scratch s;
+  const std::string scene = write_scene(s).string();
+  std::string said[2];
+  for (const int jobs : {1, 2}) {
+    const Outcome r = s.fretwear({"sweep", scene, "--vary", "load.P=1e5,3e10,1e11", "--vary", "friction=0.4,0.5",
+                                  "--jobs", std::to_string(jobs), "-q"});
+    CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+    said[jobs - 1] = r.err;
+    CHECK_FALSE(fs::exists(s.work / "out"));
+  }
+  CHECK(said[0] == said[1]);
+  std::vector<std::size_t> at;
+  for (const char* run : {"sw__load.P_30000000000.0__friction_0.4: load.P: the mean contact pressure",
+                          "sw__load.P_100000000000.0__friction_0.4: load.P: the mean contact pressure",
+                          "sw__load.P_30000000000.0__friction_0.5: load.P: the mean contact pressure",
+                          "sw__load.P_100000000000.0__friction_0.5: load.P: the mean contact pressure"}) {
+    at.push_back(said[1].find(run));
+    CHECK_MESSAGE(at.back() != std::string::npos, run, "\n", said[1]);
+    CHECK_MESSAGE(said[1].find(run, at.back() + 1) == std::string::npos, run, "\n", said[1]);
+  }
+  CHECK(std::is_sorted(at.begin(), at.end()));
+  CHECK(said[1].find("sw__load.P_100000.0") == std::string::npos);
+}
+
 TEST_CASE("a sweep refuses a value given twice for a key, exit 2, naming the key and the value, nothing written") {
   // Two runs of one variant would share a folder and write it at once.
   Scratch s;

@@ -91,6 +91,24 @@ TEST_CASE("a sweep killed under mpirun is finished by --resume under mpirun, its
         csv_rows(s.work / "one" / "sweep" / "sweep.csv", "timings.total_s"));
 }
 
+TEST_CASE("a sweep's variants under mpirun are checked a share per rank, and every problem is said once, in order") {
+  // Four of the six variants are refused by their physics (load.P past what half-plane elasticity carries, found
+  // once the contact is solved); the three ranks check two variants each, and rank 0 says all four, in the runs'
+  // order, as one process does.
+  Scratch s;
+  s.write("mpi.json", sweep_scene(s.work / "mpi").dump());
+  const std::vector<std::string> sweep{"sweep", "mpi.json", "--vary", "load.P=1e5,3e10,1e11", "--vary",
+                                       "friction=0.4,0.5", "-q"};
+  const Outcome one = s.fretwear(sweep);
+  REQUIRE_MESSAGE(one.exited(kInvalid), one.describe());
+  const MpiOutcome three = mpirun(s.work, 3, sweep);
+  CHECK_MESSAGE(three.status == kInvalid, three.err);
+  // mpirun adds its own lines after the program's.
+  CHECK_MESSAGE(three.err.rfind(one.err, 0) == 0, three.err, "\n-- one process:\n", one.err);
+  CHECK(one.err.find("the mean contact pressure") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.work / "mpi"));
+}
+
 TEST_CASE("an invalid sweep under mpirun exits 2, said once, nothing written") {
   Scratch s;
   s.write("mpi.json", sweep_scene(s.work / "mpi").dump());

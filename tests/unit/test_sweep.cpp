@@ -99,6 +99,12 @@ class FailOne final : public SweepDispatch {
                const std::function<void(std::size_t, const SweepOutcome&)>& done) override {
     for (const std::size_t k : todo) done(k, k == fail_ ? outcome_ : run(k));
   }
+  std::vector<std::vector<std::string>> check_all(
+      std::size_t n, const std::function<std::vector<std::string>(std::size_t)>& check) override {
+    std::vector<std::vector<std::string>> out;
+    for (std::size_t k = 0; k < n; ++k) out.push_back(check(k));
+    return out;
+  }
 
  private:
   std::size_t fail_;

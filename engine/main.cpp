@@ -401,7 +401,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     if (!checkpoint_folder_existed) std::filesystem::remove(control.checkpoint.parent_path(), ec);  // when empty
   };
   try {
-    RunResult result = Simulation(scene).run(&control);
+    RunResult result = Simulation(scene).run(&control, &checked.solved);
     progress.finish();
     print_warnings(result.warnings);  // those of the results; the preflight's were printed before the run
     result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());

@@ -156,10 +156,9 @@ void check_blocks_window(const Scene& scene, const Model& model, const NormalRes
 }
 
 // The wear run's cost from its first cycle: refused past kMaxRunSeconds, a warning past kLongRunSeconds.
-void check_wear(const Scene& scene, const Setup& setup, const NormalResult& normal, std::vector<std::string>& problems,
-                Preflight* preflight) {
+void check_wear(const Scene& scene, const Setup& setup, const NormalResult& normal, const CycleStage& cycle,
+                std::vector<std::string>& problems, Preflight* preflight) {
   const WearEffect& effect = *scene.wear;
-  const CycleStage cycle = solve_cycle(scene, setup.model, *setup.cycle, normal);
   const WearEstimate e = estimate_wear(scene, setup.model, cycle);
   check_gross_slip_window(scene, setup.model, cycle, e, problems, preflight);
   if (!scene.blocks.empty()) check_blocks_window(scene, setup.model, normal, problems, preflight);
@@ -216,14 +215,23 @@ std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflig
   std::vector<std::string> problems;
   try {
     const Setup setup = make_setup(scene);
-    const NormalResult normal = solve_normal(scene, setup.model);
-    check_strain(scene, setup.model, normal, problems);
+    SolvedStages solved;
+    auto t0 = std::chrono::steady_clock::now();
+    const auto normal = std::make_shared<const NormalResult>(solve_normal(scene, setup.model));
+    solved.normal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    solved.normal = normal;
+    check_strain(scene, setup.model, *normal, problems);
     if (!problems.empty()) return problems;
-    // The analogy route refuses a cycle it cannot follow (reverse slip) only once it has solved it.
-    if (setup.cycle && setup.cycle->asked == TangentialRoute::analogy)
-      solve_cycle(scene, setup.model, *setup.cycle, normal);
-    if (setup.effects.wear) check_wear(scene, setup, normal, problems, preflight);
-    if (setup.effects.stress && preflight && !normal.zones.empty()) estimate_stress(scene, normal, *preflight);
+    // The analogy route refuses a cycle it cannot follow (reverse slip) only once it has solved it; the wear run's
+    // cost is estimated from the first cycle.
+    if (setup.cycle && (setup.cycle->asked == TangentialRoute::analogy || setup.effects.wear)) {
+      t0 = std::chrono::steady_clock::now();
+      solved.cycle = std::make_shared<const CycleStage>(solve_cycle(scene, setup.model, *setup.cycle, *normal));
+      solved.cycle_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    if (setup.effects.wear) check_wear(scene, setup, *normal, *solved.cycle, problems, preflight);
+    if (setup.effects.stress && preflight && !normal->zones.empty()) estimate_stress(scene, *normal, *preflight);
+    if (preflight && problems.empty()) preflight->solved = std::move(solved);
   } catch (const ConvergenceError&) {
     // Not the scene's problem: the run reports it, with what it solved, and exits with status 3.
   } catch (const InputError& e) {

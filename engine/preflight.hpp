@@ -6,9 +6,12 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <vector>
 
+#include "engine/cycle_stage.hpp"
 #include "engine/folder.hpp"
+#include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/warnings.hpp"
 
@@ -20,14 +23,25 @@ inline constexpr double kMaxContactStrain = 0.05;
 // Wear runs estimated to take longer than this (s) are refused, naming the stepper and what to use instead.
 inline constexpr double kMaxRunSeconds = 86400.0;
 
+// The stages the checks solved: the normal contact, and the first cycle where the route or the wear stage needs it,
+// with their wall times (s). Simulation::run takes them for the same scene rather than solve them again.
+struct SolvedStages {
+  std::shared_ptr<const NormalResult> normal;
+  double normal_seconds = 0.0;
+  std::shared_ptr<const CycleStage> cycle;  // null where the checks did not solve it
+  double cycle_seconds = 0.0;
+};
+
 struct Preflight {
   std::vector<Warning> warnings;  // a wear run estimated past kLongRunSeconds
   double wear_seconds = 0.0;      // estimated wall time of the wear stage (s); 0 when short or not estimated
   double stress_seconds = 0.0;    // of the stress stage's maps, from a column timed (s); 0 without stress maps
+  SolvedStages solved;            // empty when a check failed or a solve did not converge
 };
 
 // The problems of the scene's physics that show before solving (every one, as "key: what is wrong; what to do").
-// Solves the normal contact, and the first cycle where the route or the wear stage needs it. A solve that does not
+// Solves the normal contact, and the first cycle where the route or the wear stage needs it (kept in
+// preflight->solved when the scene passes). A solve that does not
 // converge is no problem of the scene's: the run reports it (exit status 3).
 std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflight = nullptr);
 

@@ -34,21 +34,31 @@ auto timed(std::optional<double>& seconds, Stage stage) {
 
 }  // namespace
 
-RunResult Simulation::run(const WearControl* control) const {
+RunResult Simulation::run(const WearControl* control, const SolvedStages* solved) const {
   const auto t0 = std::chrono::steady_clock::now();
   RunResult r;
   const char* stage = "normal";  // the stage solving, named when its solve does not converge
+  // The time of the stages taken from `solved`, spent before this call.
+  const double before = (solved && solved->normal ? solved->normal_seconds : 0.0) +
+                        (solved && solved->normal && solved->cycle ? solved->cycle_seconds : 0.0);
+  const auto seconds_so_far = [&] { return seconds_since(t0) + before; };
   try {
     const Setup setup = make_setup(scene_);
     const Model& model = setup.model;
     const StopCheck stop = control ? control->stop_now : StopCheck{};
-    r.normal = solve_normal(scene_, model);
+    const bool reuse = solved && solved->normal;
+    r.normal = reuse ? *solved->normal : solve_normal(scene_, model);
     r.normal.peak_check = check_peak(scene_, r.normal);
-    r.timings.normal = seconds_since(t0);
+    r.timings.normal = seconds_since(t0) + (reuse ? solved->normal_seconds : 0.0);
     if (setup.effects.cycle) {
       stage = "tangential";
       stop_point(stop, "tangential");
-      r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
+      if (reuse && solved->cycle) {
+        r.cycle = *solved->cycle;
+        r.timings.tangential = solved->cycle_seconds;
+      } else {
+        r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
+      }
     }
     if (setup.effects.wear) {
       stage = "wear";
@@ -102,13 +112,13 @@ RunResult Simulation::run(const WearControl* control) const {
     // those of the stages before `stage`, and of a wear stage that failed part way what it recorded.
     std::shared_ptr<RunResult> partial;
     if (std::string_view(stage) != "normal") {
-      r.timings.total = seconds_since(t0);
+      r.timings.total = seconds_so_far();
       r.warnings = result_warnings(scene_, r);
       partial = std::make_shared<RunResult>(std::move(r));
     }
     throw StageNotConverged(e.what(), stage, std::move(partial));
   }
-  r.timings.total = seconds_since(t0);
+  r.timings.total = seconds_so_far();
   r.warnings = result_warnings(scene_, r);
   return r;
 }

@@ -19,6 +19,7 @@
 #include "engine/folder.hpp"
 #include "engine/life_stage.hpp"
 #include "engine/normal_stage.hpp"
+#include "engine/preflight.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
 #include "engine/stress_stage.hpp"
@@ -71,7 +72,9 @@ class Simulation {
   // control (optional) steers the wear stage: progress, checkpoints, resume, stop. A wear stage stopped on request
   // (WearStage::interrupted) ends the run there: stress and crack, which use the last record, are not computed.
   // A solve that does not converge throws StageNotConverged, holding what the stages before it gave.
-  RunResult run(const WearControl* control = nullptr) const;
+  // solved (optional): what the checks before solving solved for this scene (Preflight::solved), taken instead of
+  // solving it again, with its wall times as the stages'.
+  RunResult run(const WearControl* control = nullptr, const SolvedStages* solved = nullptr) const;
   const Scene& scene() const { return scene_; }
 
  private:

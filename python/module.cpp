@@ -193,7 +193,7 @@ Result run(py::handle scene_arg, py::handle output_arg) {
     py::gil_scoped_release release;
     try {
       try {
-        result = Simulation(scene).run(&control);
+        result = Simulation(scene).run(&control, &checked.solved);
         if (!check.pending_->has_value()) {
           result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());
           if (output) {

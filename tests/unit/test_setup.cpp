@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/preflight.hpp"
 #include "engine/simulation.hpp"
 
 using namespace fretwear;
@@ -107,4 +108,40 @@ TEST_CASE("the effects: the fatigue measures run with stress under a cycle only"
   CHECK(normal_only.effects.stress);
   CHECK_FALSE(normal_only.effects.fatigue);
   CHECK_FALSE(normal_only.cycle.has_value());
+}
+
+TEST_CASE("a run takes the normal contact and the first cycle the checks solved, as if it had solved them") {
+  // The checks before solving solve both for a wear scene (the wear run's cost comes from the first cycle);
+  // Simulation::run given them solves neither again, and its results are those of a run that solves them.
+  json j = cycle_scene();
+  j["effects"]["wear"] = {{"law", "archard"}, {"k", 1e-12}, {"cycles", 1e5}, {"record", 2}};
+  const Scene s = parse_scene(j);
+  Preflight checked;
+  REQUIRE(physics_problems(s, &checked).empty());
+  REQUIRE(checked.solved.normal);
+  REQUIRE(checked.solved.cycle);
+  const RunResult given = Simulation(s).run(nullptr, &checked.solved);
+  const RunResult own = Simulation(s).run();
+  CHECK(given.normal.state.p == own.normal.state.p);
+  CHECK(given.cycle->result.q_top == own.cycle->result.q_top);
+  CHECK(given.cycle->result.dissipated_energy == own.cycle->result.dissipated_energy);
+  REQUIRE(given.wear);
+  CHECK(given.wear->records.back().w == own.wear->records.back().w);
+  CHECK(make_summary(s, given)["wear"] == make_summary(s, own)["wear"]);
+  // Their times are the stages'.
+  CHECK(given.timings.normal >= checked.solved.normal_seconds);
+  CHECK(*given.timings.tangential == checked.solved.cycle_seconds);
+  CHECK(given.timings.total >= checked.solved.normal_seconds + checked.solved.cycle_seconds);
+
+  // Taken, not solved again: a stage given with a mark on it carries the mark into the results.
+  SolvedStages marked = checked.solved;
+  CycleStage cycle = *checked.solved.cycle;
+  cycle.route += " (given)";
+  marked.cycle = std::make_shared<const CycleStage>(cycle);
+  NormalResult normal = *checked.solved.normal;
+  normal.summary.iterations += 1000;
+  marked.normal = std::make_shared<const NormalResult>(normal);
+  const RunResult taken = Simulation(s).run(nullptr, &marked);
+  CHECK(taken.cycle->route == cycle.route);
+  CHECK(taken.normal.summary.iterations == normal.summary.iterations);
 }

@@ -149,25 +149,39 @@ class Result {
 };
 
 // The run's stop hooks: at each step boundary of the wear stage and between the parts of the others
-// (WearControl::stop_now), Python's pending signals are run (with the GIL taken for that moment). A handler that
-// raises (Ctrl-C's KeyboardInterrupt) stops the run there; the exception is kept and raised once the run has
-// returned.
+// (WearControl::stop_now), Python's pending signals are run (with the GIL taken for that moment), and the caller's
+// progress callable, if any, is called with where the run stands. A handler or a callable that raises (Ctrl-C's
+// KeyboardInterrupt) stops the run there; the exception is kept and raised once the run has returned. Copies of the
+// hooks share the callable (a shared_ptr, whose copies touch no Python reference count without the GIL); the one in
+// run() is the last to go, with the GIL held.
 class SignalCheck {
  public:
-  bool operator()(const WearProgress&) { return check(); }
-  bool operator()(const StagePart&) { return check(); }
+  explicit SignalCheck(py::object progress) : progress_(std::make_shared<py::object>(std::move(progress))) {}
+  bool operator()(const WearProgress& p) { return check("wear", p.cycles, p.total, "cycles"); }
+  bool operator()(const StagePart& p) { return check(p.stage, p.done, p.total, p.unit); }
 
-  bool check() {
+  bool check(const char* stage, double done, double total, const char* unit) {
     py::gil_scoped_acquire acquire;
-    if (PyErr_CheckSignals() == 0) return false;
-    *pending_ = py::error_already_set();
-    return true;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!progress_->is_none() && total > 0.0) (*progress_)(stage, done, total, unit);
+    } catch (py::error_already_set& e) {
+      *pending_ = std::move(e);
+      return true;
+    }
+    return false;
   }
   std::shared_ptr<std::optional<py::error_already_set>> pending_ =
       std::make_shared<std::optional<py::error_already_set>>();
+
+ private:
+  std::shared_ptr<py::object> progress_;
 };
 
-Result run(py::handle scene_arg, py::handle output_arg) {
+Result run(py::handle scene_arg, py::handle output_arg, py::object progress) {
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw py::type_error(fmt::format("progress must be a callable (stage, done, total, unit) or None, not {}",
+                                     py::str(py::type::of(progress)).cast<std::string>()));
   SceneArgument arg = scene_argument(scene_arg);
   Scene& scene = arg.scene;
   const std::optional<fs::path> output = output_argument(output_arg);
@@ -177,7 +191,7 @@ Result run(py::handle scene_arg, py::handle output_arg) {
     raise_scene_error(problems);
   warn(checked.warnings);
 
-  SignalCheck check;
+  SignalCheck check(progress);
   WearControl control;
   control.stop_requested = check;
   control.stop_now = check;
@@ -271,7 +285,7 @@ py::object defaults(const std::optional<std::string>& effect) {
   }
 }
 
-const char* kRunDoc = R"doc(run(scene, output=None) -> Result
+const char* kRunDoc = R"doc(run(scene, output=None, *, progress=None) -> Result
 
 Run a scene: the normal contact, then each effect it asks for (the load cycle, wear, the stresses with the fatigue
 measures, the crack's stress intensity factors, the life), all in memory, as `fretwear run` does.
@@ -281,6 +295,11 @@ scene   a dict in the scene format (docs/SCENES.md; fretwear.defaults() gives ev
 output  None (the default): nothing is written, and the scene's output.dir is ignored. A folder (str or
         pathlib.Path): the results are also written there exactly as the command line writes them (summary.json,
         the CSV files, the plots, index.html, scene.resolved.json), under the same rules for output folders.
+progress  None, or a callable progress(stage, done, total, unit), called as the run goes: at every step of the
+        wear stage ("wear", cycles done, cycles asked for, "cycles") and at every part of the stress, crack and life
+        stages (e.g. "stress", 120, 322, "map columns"), the last call of each stage with done == total. It runs
+        with the GIL held, between the solver's steps: keep it short. An exception it raises stops the run there
+        and is raised by run(), nothing written.
 
 Returns a Result: `summary` (the dict of summary.json: SI units, every number the command line reports), `scene`
 (the resolved scene) and one table of numpy arrays per CSV file, e.g. result.contact.x (m), result.contact.p (Pa);
@@ -486,7 +505,8 @@ One attribute per CSV file, None when the run does not produce it:
     // Each docstring opens with its own signature, in the types a caller gives (pybind11's would say "handle").
     py::options options;
     options.disable_function_signatures();
-    m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), kRunDoc);
+    m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), py::kw_only(), py::arg("progress") = py::none(),
+          kRunDoc);
     m.def("validate", &validate, py::arg("scene"), py::arg("output") = py::none(), kValidateDoc);
     m.def("defaults", &defaults, py::arg("effect") = py::none(), defaults_doc().c_str());
   }

@@ -40,6 +40,8 @@ using namespace fretwear;
 constexpr int kExitInvalid = 2;
 constexpr int kExitNoConvergence = 3;
 constexpr int kExitSignal = 128;  // + the signal's number: 130 SIGINT, 143 SIGTERM
+// Stress maps of more points than this, all maps of all records together, are announced before they are written.
+constexpr std::size_t kLargeMapPoints = 500000;
 
 volatile std::sig_atomic_t g_signal = 0;
 
@@ -405,6 +407,14 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     progress.finish();
     print_warnings(result.warnings);  // those of the results; the preflight's were printed before the run
     result.warnings.insert(result.warnings.begin(), checked.warnings.begin(), checked.warnings.end());
+    // Large stress maps take seconds to write and draw after the last stage (a row of stress.csv and of
+    // fatigue.csv per point: 6 maps of 601 x 301 points, 90 MB and about 5 s): said before, so that the wait is not
+    // taken for a hang.
+    std::size_t map_points = 0;
+    for (const StressMap& m : result.stress_maps) map_points += m.x.size() * m.y.size();
+    if (!quiet && map_points > kLargeMapPoints)
+      std::cerr << fmt::format("fretwear: {}: writing the results ({} points of stress maps{}) to {}/\n", scene.name,
+                               map_points, scene.plots ? ", and their plots" : "", scene.output_dir.string());
     nlohmann::json summary;
     {
       // The results are written whole, or not at all: a signal that arrives meanwhile (gnuplot drawing included)

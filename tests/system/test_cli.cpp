@@ -194,6 +194,24 @@ TEST_CASE("the stress, crack and life stages report their parts once they run fo
   for (const char* stage : {"\nstress: ", "\ncrack: ", "\nlife: "}) CHECK_MESSAGE(quiet.err.find(stage) == std::string::npos, quiet.err);
 }
 
+TEST_CASE("a run with large stress maps says it is writing them before it does, and a small one does not") {
+  // 2 phases of 801 x 401 points: 642 402, past the 500 000 that take seconds to write.
+  Scratch s;
+  const std::string scene = R"({"name": "maps", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 0.5}},
+    "grid": {"cells": 64}, "output": {"dir": "out", "plots": false}, "effects": {"tangential": {}, "stress": )";
+  s.write("large.json", scene + R"({"nx": 801, "ny": 400}}})");
+  s.write("small.json", scene + R"({}}})");
+  const Outcome large = s.fretwear({"run", "large.json"});
+  REQUIRE_MESSAGE(large.exited(kDone), large.describe());
+  CHECK_MESSAGE(large.err.find("fretwear: maps: writing the results (642402 points of stress maps) to out/") !=
+                    std::string::npos,
+                large.err);
+  const Outcome small = s.fretwear({"run", "small.json"});
+  REQUIRE_MESSAGE(small.exited(kDone), small.describe());
+  CHECK_MESSAGE(small.err.find("writing the results") == std::string::npos, small.err);
+}
+
 TEST_CASE("validate writes nothing, defaults prints a valid scene, --version, and usage errors exit 2") {
   Scratch s;
   s.write("s.json", kGood);

@@ -143,8 +143,9 @@ struct IncrementalSlipOptions {
   int cycles = 1;                 // steady cycles after the first loading; ≥ 1
   // solve_history() only: after those, cycles until the last one ends in the traction it began from, or repeats the
   // one before it at the same increments (the traction at the top and the bottom of both), within 1e-6 of the
-  // largest top traction, at most this many cycles in all; 0: exactly `cycles`. A history reaches its steady cycle only after several cycles where the first
-  // slips and the later ones do not (shakedown); IncrementalResult::repeated says whether it did.
+  // largest top traction, at most this many cycles in all; 0: exactly `cycles`. A history reaches its steady cycle
+  // only after several cycles where the first slips and the later ones do not (shakedown); IncrementalResult::repeated
+  // says whether it did.
   int steady_cycles_max = 10;
   // Increments of the cycles before the last one (the first loading takes a quarter of them): 0 for
   // increments_per_cycle; else a multiple of 4 (see above: only the last cycle is reported).

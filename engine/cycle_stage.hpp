@@ -54,7 +54,8 @@ struct CycleStage {
   };
   std::vector<HistoryEnergy> history_energy;
   // A load history: the cycles marched after the first loading until one ended where it began or repeated the one
-  // before it (the steady cycle reported; IncrementalSlipOptions::steady_cycles_max), and whether one did within that cap.
+  // before it (the steady cycle reported; IncrementalSlipOptions::steady_cycles_max), and whether one did within
+  // that cap.
   int history_cycles = 0;
   bool history_steady = true;
 };

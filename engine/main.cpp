@@ -103,7 +103,7 @@ class ProgressLine {
     show(line);
   }
 
-  // A stage's parts (StagePart), once it has run for kQuietStage: a short stage says nothing.
+  // A stage's parts (StagePart), once it has run for quiet_stage_: a short stage says nothing.
   void update(const StagePart& p) {
     if (p.total <= 0.0) return;
     const auto now = clock::now();

@@ -38,10 +38,8 @@ RunResult Simulation::run(const WearControl* control, const SolvedStages* solved
   const auto t0 = std::chrono::steady_clock::now();
   RunResult r;
   const char* stage = "normal";  // the stage solving, named when its solve does not converge
-  // The time of the stages taken from `solved`, spent before this call.
-  const double before = (solved && solved->normal ? solved->normal_seconds : 0.0) +
-                        (solved && solved->normal && solved->cycle ? solved->cycle_seconds : 0.0);
-  const auto seconds_so_far = [&] { return seconds_since(t0) + before; };
+  double reused = 0.0;  // the time of the stages taken from `solved`, spent before this call (s)
+  const auto seconds_so_far = [&] { return seconds_since(t0) + reused; };
   try {
     const Setup setup = make_setup(scene_);
     const Model& model = setup.model;
@@ -49,13 +47,15 @@ RunResult Simulation::run(const WearControl* control, const SolvedStages* solved
     const bool reuse = solved && solved->normal;
     r.normal = reuse ? *solved->normal : solve_normal(scene_, model);
     r.normal.peak_check = check_peak(scene_, r.normal);
-    r.timings.normal = seconds_since(t0) + (reuse ? solved->normal_seconds : 0.0);
+    if (reuse) reused += solved->normal_seconds;
+    r.timings.normal = seconds_since(t0) + reused;
     if (setup.effects.cycle) {
       stage = "tangential";
       stop_point(stop, "tangential");
       if (reuse && solved->cycle) {
         r.cycle = *solved->cycle;
         r.timings.tangential = solved->cycle_seconds;
+        reused += solved->cycle_seconds;
       } else {
         r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
       }

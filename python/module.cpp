@@ -505,8 +505,8 @@ One attribute per CSV file, None when the run does not produce it:
     // Each docstring opens with its own signature, in the types a caller gives (pybind11's would say "handle").
     py::options options;
     options.disable_function_signatures();
-    m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), py::kw_only(), py::arg("progress") = py::none(),
-          kRunDoc);
+    m.def("run", &run, py::arg("scene"), py::arg("output") = py::none(), py::kw_only(),
+          py::arg("progress") = py::none(), kRunDoc);
     m.def("validate", &validate, py::arg("scene"), py::arg("output") = py::none(), kValidateDoc);
     m.def("defaults", &defaults, py::arg("effect") = py::none(), defaults_doc().c_str());
   }

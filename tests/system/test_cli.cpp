@@ -191,7 +191,8 @@ TEST_CASE("the stress, crack and life stages report their parts once they run fo
   }
   const Outcome quiet = s.fretwear({"run", "life.json"});
   REQUIRE_MESSAGE(quiet.exited(kDone), quiet.describe());
-  for (const char* stage : {"\nstress: ", "\ncrack: ", "\nlife: "}) CHECK_MESSAGE(quiet.err.find(stage) == std::string::npos, quiet.err);
+  for (const char* stage : {"\nstress: ", "\ncrack: ", "\nlife: "})
+    CHECK_MESSAGE(quiet.err.find(stage) == std::string::npos, quiet.err);
 }
 
 TEST_CASE("a run with large stress maps says it is writing them before it does, and a small one does not") {

@@ -4,11 +4,19 @@
 #include <mutex>
 
 #include <fftw3.h>
+#include <pthread.h>
 
 namespace fretwear {
 
 std::mutex& fftw_planner_mutex() {
   static std::mutex m;
+  // A process forked while another of its threads plans would hold the lock in the child for good, where no thread
+  // releases it: the fork waits for the lock, then releases it on both sides (a Python pool forks while a thread
+  // runs fretwear).
+  static const bool fork_safe = [] {
+    return ::pthread_atfork([] { m.lock(); }, [] { m.unlock(); }, [] { m.unlock(); }) == 0;
+  }();
+  (void)fork_safe;
   return m;
 }
 

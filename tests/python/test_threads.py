@@ -71,3 +71,41 @@ def test_two_threads_run_at_once_in_a_fresh_process(effect):
     if effect == "tangential":  # partial slip: a stick zone that shrinks as Q grows
         widths = [t["summary"]["cycle"]["stick_zone"][1] - t["summary"]["cycle"]["stick_zone"][0] for t in threaded]
         assert widths == sorted(widths, reverse=True) and widths[-1] > 0
+
+
+# A process forked while another thread runs fretwear (a multiprocessing pool on Linux forks so): the child runs
+# fretwear too. The FFT planner's lock, held by the other thread at the fork, would be held in the child for good;
+# before the fork waited for it, a third of such children hung.
+FORKS = """
+import os, sys, threading, time
+import fretwear
+
+small = fretwear.defaults("normal")
+small["grid"]["cells"] = 64
+stop = False
+def keep_running():
+    while not stop:
+        fretwear.run(small)
+threading.Thread(target=keep_running, daemon=True).start()
+time.sleep(0.2)
+for _ in range(int(sys.argv[1])):
+    pid = os.fork()
+    if pid == 0:
+        fretwear.run(small)
+        os._exit(0)
+    deadline = time.monotonic() + 20
+    while os.waitpid(pid, os.WNOHANG) == (0, 0):
+        if time.monotonic() > deadline:
+            os.kill(pid, 9)
+            print("a child hung", flush=True)
+            os._exit(1)
+        time.sleep(0.01)
+stop = True
+print("ok", flush=True)
+"""
+
+
+def test_a_child_forked_while_another_thread_runs_can_run():
+    done = subprocess.run([sys.executable, "-W", "ignore", "-c", FORKS, "30"], capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0 and done.stdout == "ok\n", done.stdout + done.stderr

@@ -58,8 +58,12 @@ json convert(py::handle value, const std::string& path, std::size_t depth, Probl
       if (!PyErr_Occurred()) return u;
       PyErr_Clear();
     }
-    return null_with(fmt::format("{}: the integer {} does not fit in 64 bits; give a float", where,
-                                 std::string(py::str(value))));
+    // Its digits when they are few (Python refuses to print an int of over 4300 digits at all).
+    const auto bits = value.attr("bit_length")().cast<long long>();
+    return null_with(bits <= 256 ? fmt::format("{}: the integer {} does not fit in 64 bits; give a float", where,
+                                               std::string(py::str(value)))
+                                 : fmt::format("{}: an integer of {} bits does not fit in 64 bits; give a float",
+                                               where, bits));
   }
   if (py::isinstance<py::float_>(value)) return value.cast<double>();
   if (py::isinstance<py::str>(value)) {
@@ -94,7 +98,8 @@ json convert(py::handle value, const std::string& path, std::size_t depth, Probl
   // int and float (a longdouble rounded to double: item() would give a longdouble back).
   const py::module_ numpy = py::module_::import("numpy");
   if (py::isinstance(value, numpy.attr("bool_"))) return value.attr("item")().cast<bool>();
-  if (py::isinstance(value, numpy.attr("integer"))) return convert(py::int_(py::reinterpret_borrow<py::object>(value)), path, depth + 1, problems);
+  // numpy's timedelta64 is one of its integers, and a duration, not a number of the scene's units.
+  if (py::isinstance(value, numpy.attr("integer")) && !py::isinstance(value, numpy.attr("timedelta64"))) return convert(py::int_(py::reinterpret_borrow<py::object>(value)), path, depth + 1, problems);
   if (py::isinstance(value, numpy.attr("floating"))) return convert(py::float_(py::reinterpret_borrow<py::object>(value)), path, depth + 1, problems);
   return null_with(fmt::format("{}: a {} is not a JSON value; give a dict, list, str, number, bool or None", where,
                                type_name(value)));

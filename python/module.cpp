@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -119,12 +120,17 @@ SceneArgument scene_argument(py::handle arg) {
 // The folder an `output` argument names; scene.output_dir is replaced by it.
 std::optional<fs::path> output_argument(py::handle output) {
   if (output.is_none()) return std::nullopt;
+  if (!py::isinstance<py::str>(output) && !py::isinstance<py::bytes>(output) &&
+      !py::isinstance(output, py::module_::import("os").attr("PathLike")))
+    throw py::type_error(fmt::format("output must be a folder's path (str, bytes or os.PathLike) or None, not {}",
+                                     std::string(py::str(py::type::handle_of(output).attr("__name__")))));
   return path_argument(output);
 }
 
 void warn(const std::vector<Warning>& warnings) {
   for (const Warning& w : warnings)
-    if (PyErr_WarnEx(g_warning, (w.code + ": " + w.message).c_str(), 2) < 0) throw py::error_already_set();
+    // Level 1: fretwear's functions have no Python frame of their own, so the warning is the caller's line.
+    if (PyErr_WarnEx(g_warning, (w.code + ": " + w.message).c_str(), 1) < 0) throw py::error_already_set();
 }
 
 // What the checks before solving find: every problem, as the command line's preflight.
@@ -136,6 +142,43 @@ std::vector<std::string> problems_before_solving(const Scene& scene, const fs::p
   const std::vector<std::string> physics = physics_problems(scene, checked);
   problems.insert(problems.end(), physics.begin(), physics.end());
   return problems;
+}
+
+// The runs in progress, counted with the GIL held. The interpreter, as it exits, takes a thread that asks for the
+// GIL off its stack without unwinding it (pthread_exit), which a run's C++ frames do not survive (std::terminate).
+// Python waits for its threads before it exits, but not for one whose join() a Ctrl-C interrupted, and not for a
+// daemon thread: so at exit (atexit, below) the runs still going are asked to stop, at their next step or part, and
+// awaited; a run asked for after that is refused. Both raise SystemExit in the run's thread, which a thread ends on
+// without a word.
+int g_runs = 0;
+thread_local int t_runs = 0;  // those of this thread (a progress callable may run fretwear again)
+bool g_exiting = false;
+constexpr const char* kExiting = "fretwear.run stopped: the Python interpreter is exiting";
+
+class RunInProgress {
+ public:
+  RunInProgress() {
+    if (g_exiting) {
+      PyErr_SetString(PyExc_SystemExit, kExiting);
+      throw py::error_already_set();
+    }
+    ++g_runs;
+    ++t_runs;
+  }
+  ~RunInProgress() {
+    --g_runs;
+    --t_runs;
+  }
+  RunInProgress(const RunInProgress&) = delete;
+  RunInProgress& operator=(const RunInProgress&) = delete;
+};
+
+void stop_runs_at_exit() {
+  g_exiting = true;
+  while (g_runs > t_runs) {
+    py::gil_scoped_release release;  // for the runs to reach their next check, and to return
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
 }
 
 class Result {
@@ -164,7 +207,15 @@ class SignalCheck {
     py::gil_scoped_acquire acquire;
     try {
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      if (!progress_->is_none() && total > 0.0) (*progress_)(stage, done, total, unit);
+      if (g_exiting) {
+        PyErr_SetString(PyExc_SystemExit, kExiting);
+        throw py::error_already_set();
+      }
+      // The wear stage asks again at a record that ends a step: the callable hears of each place once.
+      if (!progress_->is_none() && total > 0.0 && (last_->stage != stage || last_->done != done)) {
+        *last_ = {stage, done};
+        (*progress_)(stage, done, total, unit);
+      }
     } catch (py::error_already_set& e) {
       *pending_ = std::move(e);
       return true;
@@ -175,13 +226,19 @@ class SignalCheck {
       std::make_shared<std::optional<py::error_already_set>>();
 
  private:
+  struct Told {
+    std::string stage;
+    double done = -1.0;
+  };
   std::shared_ptr<py::object> progress_;
+  std::shared_ptr<Told> last_ = std::make_shared<Told>();
 };
 
 Result run(py::handle scene_arg, py::handle output_arg, py::object progress) {
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     throw py::type_error(fmt::format("progress must be a callable (stage, done, total, unit) or None, not {}",
                                      py::str(py::type::of(progress)).cast<std::string>()));
+  const RunInProgress counted;
   SceneArgument arg = scene_argument(scene_arg);
   Scene& scene = arg.scene;
   const std::optional<fs::path> output = output_argument(output_arg);
@@ -255,6 +312,13 @@ Result run(py::handle scene_arg, py::handle output_arg, py::object progress) {
   r.output = output ? py::object(py::module_::import("pathlib").attr("Path")(output->string())) : py::none();
   for (auto& [name, table] : result_tables(scene, result)) r.tables[name] = py::cast(std::move(table));
   return r;
+}
+
+// Pickling by the state (__getstate__, __setstate__) at every protocol. Protocols 0 and 1 would otherwise rebuild
+// the object through object.__new__, which a pybind11 class refuses (an abort); protocol 2's reduction
+// (copyreg.__newobj__, the class, the state) is read by every protocol.
+py::object reduce_by_state(py::handle self, int protocol) {
+  return py::module_::import("builtins").attr("object").attr("__reduce_ex__")(self, std::max(protocol, 2));
 }
 
 py::list validate(py::handle scene_arg, py::handle output_arg) {
@@ -373,6 +437,12 @@ complete default scene. Errors: SceneError (with .problems), ConvergenceError. U
   // pybind11's npy_api::get() is that static (every py::array_t made in tables.cpp reaches it).
   py::detail::npy_api::get();
 
+  py::module_::import("atexit").attr("register")(py::cpp_function(&stop_runs_at_exit));
+  // A forked child has only the thread that forked: the parent's other runs are not its own.
+  py::module_::import("os").attr("register_at_fork")(py::arg("after_in_child") = py::cpp_function([] {
+                                                       g_runs = t_runs;
+                                                     }));
+
   g_scene_error = PyErr_NewExceptionWithDoc(
       "fretwear.SceneError",
       "An invalid scene: nothing was computed or written. `problems` lists every problem, each "
@@ -405,9 +475,18 @@ its column names, as a dict's keys ("p" in table, dict(table)); len(table) is th
                if (c.name == name) return c.values;
              throw py::attribute_error(fmt::format("{} has no column \"{}\"", t.file(), name));
            })
-      .def("__getitem__", [](const Table& t, const std::string& name) { return t.column(name).values; })
+      // As a dict's: a key that is not a column name (of whatever type) is a KeyError, and not in the table.
+      .def("__getitem__",
+           [](const Table& t, py::handle key) {
+             if (!py::isinstance<py::str>(key))
+               throw py::key_error(fmt::format("{} has no column {}; its columns are named by str", t.file(),
+                                               std::string(py::repr(key))));
+             return t.column(key.cast<std::string>()).values;
+           })
       .def("__contains__",
-           [](const Table& t, const std::string& name) {
+           [](const Table& t, py::handle key) {
+             if (!py::isinstance<py::str>(key)) return false;
+             const auto name = key.cast<std::string>();
              for (const Column& c : t.columns())
                if (c.name == name) return true;
              return false;
@@ -443,7 +522,8 @@ its column names, as a dict's keys ("p" in table, dict(table)); len(table) is th
            "{column: numpy array}, in the CSV's order (pandas.DataFrame(table.to_dict()))")
       .def("__repr__", &Table::describe)
       .def(py::pickle([](const Table& t) { return t.state(); },
-                      [](const py::tuple& state) { return Table::from_state(state); }));
+                      [](const py::tuple& state) { return Table::from_state(state); }))
+      .def("__reduce_ex__", &reduce_by_state, py::arg("protocol"));
 
   std::string result_doc = R"doc(What fretwear.run returns.
 
@@ -494,7 +574,8 @@ One attribute per CSV file, None when the run does not produce it:
                             r.tables[name.cast<std::string>()] = py::reinterpret_borrow<py::object>(t);
                           }
                           return r;
-                        }));
+                        }))
+                    .def("__reduce_ex__", &reduce_by_state, py::arg("protocol"));
   for (const auto& [name, line] : table_names()) {
     const std::string key = name;
     result.def_property_readonly(

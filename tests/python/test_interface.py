@@ -7,6 +7,7 @@ import multiprocessing
 import os
 import pathlib
 import pickle
+import sys
 
 import numpy
 import pytest
@@ -70,6 +71,36 @@ def test_every_numpy_scalar_is_its_number_and_nothing_hides_the_other_problems()
     # Not a number and nothing at all are named as what they are.
     assert "load.P: nan is not allowed; give a normal load" in fretwear.validate(example("hertz_normal", **{"load.P": float("nan")}))[0]
     assert fretwear.validate(example("hertz_normal", **{"load.P": None}))[0].startswith("load.P: null is not a value")
+
+
+def test_an_integer_too_long_to_print_and_a_duration_are_problems_with_their_paths():
+    # Python refuses to print an int of over 4300 digits: it is named by its size, with the scene's other problems.
+    scene = example("hertz_normal", **{"load.P": 10**5000, "grid.cells": 3})
+    problems = fretwear.validate(scene)
+    assert problems[0] == "load.P: an integer of 16610 bits does not fit in 64 bits; give a float"
+    assert any(p.startswith("grid.cells: ") for p in problems), problems
+    assert fretwear.validate(example("hertz_normal", **{"load.P": 2**64}))[0] == (
+        "load.P: the integer 18446744073709551616 does not fit in 64 bits; give a float")
+    # numpy makes timedelta64 one of its integers; a duration is not a load.
+    assert fretwear.validate(example("hertz_normal", **{"load.P": numpy.timedelta64(5)})) == [
+        "load.P: a timedelta64 is not a JSON value; give a dict, list, str, number, bool or None"]
+
+
+def test_output_that_is_not_a_path_is_named(in_empty_folder):
+    with pytest.raises(TypeError, match=r"^output must be a folder's path \(str, bytes or os.PathLike\) or None, "
+                                        r"not int$"):
+        fretwear.run(example("hertz_normal", **{"grid.cells": 128}), output=5)
+    assert list(in_empty_folder.iterdir()) == []
+
+
+def test_a_warning_names_the_line_that_called_fretwear(monkeypatch):
+    # The long run of the test above, warned by validate as by run; fretwear's functions have no frame of their own.
+    monkeypatch.setenv("FRETWEAR_CYCLE_SOLVE_SECONDS", "1e-5")
+    scene = example("hertz_wear", **{"grid.cells": 256, "effects.wear.k": 2.5e-14, "effects.wear.cycles": 1e12,
+                                     "effects.wear.stepper": "explicit"})
+    with pytest.warns(fretwear.FretwearWarning, match="^long_run: ") as caught:
+        fretwear.validate(scene); line = sys._getframe().f_lineno  # noqa: E702 (the call's own line)
+    assert [(w.filename, w.lineno) for w in caught] == [(__file__, line)]
 
 
 def test_paths_may_be_bytes_and_an_output_path_must_be_utf8(in_empty_folder):
@@ -250,6 +281,10 @@ def test_a_table_iterates_over_its_column_names_as_a_dict_does():
     assert all(name in table for name in table)
     assert dict(table).keys() == table.to_dict().keys() and dict(table)["p"] is table.p
     assert len(table) == 128  # the rows
+    # A key that names no column, of whatever type, as a dict's.
+    assert 5 not in table and None not in table
+    with pytest.raises(KeyError, match="contact.csv has no column 5; its columns are named by str"):
+        table[5]
 
 
 def same_result(a, b):
@@ -272,7 +307,10 @@ def run_elsewhere(scene):
 def test_a_result_pickles_and_a_pool_of_processes_can_return_one(tmp_path):
     scene = example("dissimilar_cycle", **{"grid.cells": 256})  # a label column (loop.phase) among the tables
     result = fretwear.run(scene, output=tmp_path / "out")
-    same_result(result, pickle.loads(pickle.dumps(result)))
+    for protocol in range(pickle.HIGHEST_PROTOCOL + 1):  # 0 and 1 too, which rebuild an object otherwise
+        same_result(result, pickle.loads(pickle.dumps(result, protocol)))
+        table = pickle.loads(pickle.dumps(result.loop, protocol))
+        assert repr(table) == repr(result.loop) and not table.P.flags.writeable
     same_result(result, copy.deepcopy(result))
     with pytest.raises(ValueError, match="read-only"):
         pickle.loads(pickle.dumps(result.loop)).P[0] = 0.0

@@ -1,8 +1,11 @@
 """Ctrl-C during a long wear run raises KeyboardInterrupt at the next step boundary, and during a long stress stage
 before its next column of the map; either writes nothing and leaves the module ready for the next run; meanwhile the
 solve holds no GIL, so Python's other threads run."""
+import json
 import os
 import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -74,3 +77,41 @@ def test_other_threads_run_while_it_solves():
     assert solve > 0.1 and end - start > solve
     during = [t for t in ticks if end - 0.8 * solve < t < end - 0.3 * solve]
     assert len(during) >= TICKS_WITHOUT_GIL, (solve, len(during))
+
+
+# A run left solving in another thread when the interpreter exits: one whose join() a Ctrl-C interrupted (Python
+# then no longer waits for the thread), or a daemon thread. Each is stopped at its next step and awaited; its thread
+# sees SystemExit. Before, the interpreter took the thread off mid-run and the process aborted (exit 134).
+LEFT_RUNNING = """
+import json, os, signal, sys, threading, time
+import fretwear
+
+scene = json.loads(sys.stdin.read())
+def work():
+    try:
+        fretwear.run(scene)
+    except BaseException as e:
+        print(type(e).__name__, e, flush=True)
+worker = threading.Thread(target=work, daemon=sys.argv[1] == "daemon")
+worker.start()
+time.sleep(1)
+if sys.argv[1] == "join":
+    threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT)).start()
+    try:
+        worker.join()
+    except KeyboardInterrupt:
+        print("interrupted", flush=True)
+"""
+
+
+@pytest.mark.parametrize("how", ["join", "daemon"])
+def test_a_run_left_solving_in_a_thread_stops_as_the_interpreter_exits(how, in_empty_folder):
+    start = time.monotonic()
+    done = subprocess.run([sys.executable, "-W", "ignore", "-c", LEFT_RUNNING, how], input=json.dumps(LONG),
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    said = ("interrupted\n" if how == "join" else "") + (
+        "SystemExit fretwear.run stopped: the Python interpreter is exiting\n")
+    assert done.stdout == said, done.stdout + done.stderr
+    assert time.monotonic() - start < 1.5 + STOP_WITHIN_S + 5  # the interpreter's start, and numpy's import
+    assert list(in_empty_folder.iterdir()) == []

@@ -29,6 +29,7 @@ def test_progress_follows_every_stage_to_its_end():
         assert dones == sorted(dones), key
         assert seen[-1][0] == seen[-1][1], key  # the stage's last call: all of it done
         assert len({t for _, t in seen}) == 1, key
+        assert len(set(dones)) == len(dones), key  # each place once (a record that ends a step, too)
 
 
 class Enough(Exception):

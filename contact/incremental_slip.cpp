@@ -775,6 +775,7 @@ void IncrementalSlipSolver::Run::count(const SolveSummary& s) {
   ++result_.n_increments;
   result_.n_iterations += s.iterations;
   if (!(s.residual <= result_.worst.residual) || result_.n_increments == 1) result_.worst = s;
+  if (options_.after_increment) options_.after_increment(result_.n_increments);
 }
 
 CycleResult IncrementalSlipSolver::Run::begin_cycle() {

@@ -125,6 +125,7 @@
 #pragma once
 
 #include <complex>
+#include <functional>
 #include <map>
 #include <span>
 #include <string>
@@ -164,6 +165,9 @@ struct IncrementalSlipOptions {
   // on x = 0): the last cycle's reloading half taken as the mirror image of its unloading half, solve() only.
   bool mirror_half_cycle = false;
   NormalSolverOptions normal;     // for the normal solves of the coupled increments
+  // Called after each increment with the number marched so far (the first loading's and every cycle's); may throw to
+  // end the march (a stop asked for). Empty: not called.
+  std::function<void(int)> after_increment;
 
   // Empty when valid; otherwise names the field, its value and the constraint.
   std::string validate() const;

@@ -239,7 +239,7 @@ void history_energies(const Scene& scene, const Model& model, const NormalResult
 }
 
 CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const CyclePlan& plan,
-                              const NormalResult& normal) {
+                              const NormalResult& normal, const StopCheck& stop) {
   CycleStage stage;
   stage.plan = plan;
   stage.f = plan.load.f;
@@ -264,9 +264,18 @@ CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const Cycl
   IncrementalSlipOptions options;
   options.increments_per_cycle = scene.tangential->increments;
   if (plan.dissimilar()) options.cycles = 2;  // β ≠ 0: the first cycle after the first loading is not yet the steady one
+  const bool history = !load.history.empty();
+  // A stop asked for ends the march at its next increment. A constant amplitude marches the first loading (a
+  // quarter cycle) and `cycles` cycles; a history, cycles until steady: its count is not known beforehand.
+  if (stop) {
+    const int m = options.increments_per_cycle;
+    const double total = history ? 0.0 : double(m / 4 + options.cycles * m);
+    options.after_increment = [&stop, total](int marched) {
+      stop_point(stop, StagePart{"tangential", double(marched), total, "increments"});
+    };
+  }
   const IncrementalSlipSolver solver(*model.kernel, options);
   const NormalCoupling coupling{plan.beta, model.g0};
-  const bool history = !load.history.empty();
   const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum, &coupling)
                                       : solver.solve(normal.state, load, &datum, &coupling);
   stage.ran = TangentialRoute::incremental;
@@ -291,8 +300,9 @@ CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const Cycl
 
 }  // namespace
 
-CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal) {
-  CycleStage stage = solve_steady_cycle(scene, model, plan, normal);
+CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal,
+                       const StopCheck& stop) {
+  CycleStage stage = solve_steady_cycle(scene, model, plan, normal, stop);
   if (scene.tangential) history_energies(scene, model, normal, stage);
   return stage;
 }

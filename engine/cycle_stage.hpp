@@ -15,6 +15,7 @@
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
 #include "engine/setup.hpp"
+#include "engine/stop.hpp"
 
 namespace fretwear {
 
@@ -66,7 +67,8 @@ struct CycleStage {
 std::pair<double, double> reference_point(const Scene& scene, const NormalResult& normal);
 
 // One steady load cycle, by the plan. Throws UnsupportedError where the analogy, asked for, finds reverse slip.
-CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal);
+CycleStage solve_cycle(const Scene& scene, const Model& model, const CyclePlan& plan, const NormalResult& normal,
+                       const StopCheck& stop = {});
 // The same with the scene's own plan (plan_cycle).
 CycleStage solve_cycle(const Scene& scene, const Model& model, const NormalResult& normal);
 

@@ -226,7 +226,8 @@ std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflig
     // cost is estimated from the first cycle.
     if (setup.cycle && (setup.cycle->asked == TangentialRoute::analogy || setup.effects.wear)) {
       t0 = std::chrono::steady_clock::now();
-      solved.cycle = std::make_shared<const CycleStage>(solve_cycle(scene, setup.model, *setup.cycle, *normal));
+      solved.cycle = std::make_shared<const CycleStage>(solve_cycle(scene, setup.model, *setup.cycle, *normal,
+                                                                         preflight ? preflight->stop : StopCheck{}));
       solved.cycle_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     if (setup.effects.wear) check_wear(scene, setup, *normal, *solved.cycle, problems, preflight);

@@ -37,6 +37,8 @@ struct Preflight {
   double wear_seconds = 0.0;      // estimated wall time of the wear stage (s); 0 when short or not estimated
   double stress_seconds = 0.0;    // of the stress stage's maps, from a column timed (s); 0 without stress maps
   SolvedStages solved;            // empty when a check failed or a solve did not converge
+  // Asked by the first cycle's march at each increment (a stop ends it with StopRequested); set by the caller.
+  StopCheck stop;
 };
 
 // The problems of the scene's physics that show before solving (every one, as "key: what is wrong; what to do").

@@ -57,7 +57,7 @@ RunResult Simulation::run(const WearControl* control, const SolvedStages* solved
         r.timings.tangential = solved->cycle_seconds;
         reused += solved->cycle_seconds;
       } else {
-        r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal); });
+        r.cycle = timed(r.timings.tangential, [&] { return solve_cycle(scene_, model, *setup.cycle, r.normal, stop); });
       }
     }
     if (setup.effects.wear) {

@@ -243,12 +243,19 @@ Result run(py::handle scene_arg, py::handle output_arg, py::object progress) {
   Scene& scene = arg.scene;
   const std::optional<fs::path> output = output_argument(output_arg);
   if (output) scene.output_dir = *output;
+  SignalCheck check(progress);
   Preflight checked;
-  if (auto problems = problems_before_solving(scene, arg.scene_file, output.has_value(), &checked); !problems.empty())
-    raise_scene_error(problems);
+  checked.stop = check;  // the checks march a wear scene's first cycle
+  std::vector<std::string> problems;
+  try {
+    problems = problems_before_solving(scene, arg.scene_file, output.has_value(), &checked);
+  } catch (const StopRequested&) {
+    (*check.pending_)->restore();
+    throw py::error_already_set();
+  }
+  if (!problems.empty()) raise_scene_error(problems);
   warn(checked.warnings);
 
-  SignalCheck check(progress);
   WearControl control;
   control.stop_requested = check;
   control.stop_now = check;

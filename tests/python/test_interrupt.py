@@ -43,6 +43,18 @@ def test_ctrl_c_stops_a_long_wear_run_cleanly(in_empty_folder):
     stops_cleanly(LONG, in_empty_folder)
 
 
+# The coupled cycle of dissimilar bodies at 20 000 increments a cycle (45 000 in all, some ten seconds): marched by
+# the cycle stage, or, for a wear scene, by the checks before the run. Either stops at its next increment.
+MARCHED = example("dissimilar_cycle", **{"effects.tangential.increments": 20000})
+MARCHED_FOR_WEAR = example("dissimilar_cycle", **{"effects.tangential.increments": 20000,
+                                                  "effects.wear": {"law": "archard", "k": 1e-12, "cycles": 1e5}})
+
+
+@pytest.mark.parametrize("scene", [MARCHED, MARCHED_FOR_WEAR], ids=["cycle", "cycle checked for wear"])
+def test_ctrl_c_stops_a_long_marched_cycle_cleanly(scene, in_empty_folder):
+    stops_cleanly(scene, in_empty_folder)
+
+
 # hertz_cycle with a stress map of 401 x 401 points on 2048 cells: some ten seconds in the stress stage alone.
 LONG_STRESS = example("hertz_cycle", **{"effects.stress": {"nx": 401, "ny": 400}})
 

@@ -1,5 +1,6 @@
-"""run(..., progress=f): f is told where the run stands at every wear step and every part of the later stages, the
-last call of a stage with all of it done; what f raises stops the run, nothing written; a non-callable is refused."""
+"""run(..., progress=f): f is told where the run stands at every increment of a marched cycle, every wear step and
+every part of the later stages, the last call of a stage with all of it done; what f raises stops the run, nothing
+written; a non-callable is refused."""
 import pytest
 
 import fretwear
@@ -18,7 +19,8 @@ def test_progress_follows_every_stage_to_its_end():
     for stage, done, total, unit in calls:
         assert 0 <= done <= total
         stages.setdefault((stage, unit), []).append((done, total))
-    assert set(stages) == {("wear", "cycles"), ("stress", "map columns"), ("stress", "rows of the SWT maps"),
+    # The slip amplitude is prescribed: the load cycle is marched, by the checks before the wear run.
+    assert set(stages) == {("tangential", "increments"), ("wear", "cycles"), ("stress", "map columns"), ("stress", "rows of the SWT maps"),
                            ("crack", "records"), ("life", "parts (initiation, growth)")}
     records = result.summary["wear"]["records"]
     assert stages[("crack", "records")][-1] == (records, records)

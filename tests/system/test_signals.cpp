@@ -64,6 +64,30 @@ TEST_CASE("SIGINT twice in quick succession: no temporary file, and run --resume
   interrupt(2);
 }
 
+// The load cycle marched in increments stops at its next increment: dissimilar bodies (steel on aluminium, the
+// coupled march) at 20 000 increments a cycle, 45 000 in all, some ten seconds, stopped one second in.
+TEST_CASE("SIGINT while the load cycle is marched: exit 130 within an increment, nothing written") {
+  Scratch s;
+  json scene = json::parse(read_file(fs::path(FRETWEAR_SOURCE_DIR) / "examples" / "dissimilar_cycle.json"));
+  scene["effects"]["tangential"]["increments"] = 20000;
+  scene["output"] = {{"dir", "out"}, {"plots", false}};
+  s.write("d.json", scene.dump());
+  const Snapshot before = s.snapshot();
+  Child child = s.start({"run", "d.json"}, {{"FRETWEAR_STAGE_QUIET_S", "0"}});
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  REQUIRE_MESSAGE(child.running(), "the run ended before the signal: " << child.wait().describe());
+  const auto sent = std::chrono::steady_clock::now();
+  child.signal(SIGINT);
+  const Outcome r = child.wait();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  CHECK_MESSAGE(r.exited(kInterrupted), "want exit 130, got " << r.describe());
+  CHECK_MESSAGE(seconds < 2.0, "stopped " << seconds << " s after the signal");
+  CHECK_MESSAGE(r.err.find(" / 45000 increments, ") != std::string::npos, r.err);  // its progress, as it marched
+  CHECK_MESSAGE(r.err.find("stopped in the tangential stage by signal 2; nothing written") != std::string::npos,
+                r.err);
+  CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "changed: " << join(changes(before, s.snapshot())));
+}
+
 // A stop outside the wear stage's step boundaries: in the stages after it (stress, crack, life) the run ends at
 // their next part with exit 130 and nothing written, and the results already in output.dir stay as they were; the
 // wear's checkpoint is kept, and `run --resume` gives the uninterrupted results. FRETWEAR_STOP_IN_STAGE=<stage>

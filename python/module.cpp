@@ -183,7 +183,7 @@ void stop_runs_at_exit() {
 
 class Result {
  public:
-  py::object summary, scene, output;
+  py::object summary = py::dict(), scene = py::dict(), output = py::none();
   std::map<std::string, py::object> tables;
   py::object table(const std::string& name) const {
     const auto it = tables.find(name);
@@ -328,6 +328,56 @@ py::object reduce_by_state(py::handle self, int protocol) {
   return py::module_::import("builtins").attr("object").attr("__reduce_ex__")(self, std::max(protocol, 2));
 }
 
+// Every Table and Result Python holds is a constructed one. pybind11's own __new__ allocates an instance whose C++
+// object only __init__ makes, and these classes have none (fretwear.run makes them): Cls.__new__(Cls), which
+// copyreg.__newobj__ calls to unpickle and anyone may call, would hand out an object whose every attribute reads
+// memory never written. Their __new__ makes an empty one instead (a table of no columns, a result of an empty
+// summary), which __setstate__ fills when unpickled. The classes are final, so the class is always Cls itself.
+// Both doors are set: Cls.__new__ as Python finds it in the class's dict (PyType_Ready gave the class none of its
+// own), and the type's slot, which Cls() reaches (then refused by __init__) and which makes pybind11's base
+// __new__ refuse the class as not safe for it.
+template <class T>
+py::object new_empty(py::handle cls, const py::args& args, const py::kwargs& kwargs) {
+  const py::type type = py::type::of<T>();
+  const std::string name = "fretwear." + std::string(py::str(type.attr("__name__")));
+  if (!cls.is(type))
+    throw py::type_error(fmt::format("{}.__new__({}): not {}", name, std::string(py::repr(cls)), name));
+  if (!args.empty() || !kwargs.empty()) throw py::type_error(name + "() takes no arguments: fretwear.run makes one");
+  return py::cast(T());
+}
+
+template <class T>
+void new_makes_an_empty_one(py::class_<T>& cls) {
+  auto* type = reinterpret_cast<PyTypeObject*>(cls.ptr());
+  type->tp_new = [](PyTypeObject* subtype, PyObject* args, PyObject* kwargs) -> PyObject* {
+    try {
+      return new_empty<T>(reinterpret_cast<PyObject*>(subtype), py::reinterpret_borrow<py::args>(args),
+                          kwargs ? py::reinterpret_borrow<py::kwargs>(kwargs) : py::kwargs())
+          .release()
+          .ptr();
+    } catch (py::error_already_set& e) {
+      e.restore();
+    } catch (const py::builtin_exception& e) {
+      e.set_error();
+    } catch (const std::exception& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+    return nullptr;
+  };
+  const py::object new_ = py::module_::import("builtins").attr("staticmethod")(py::cpp_function(
+      &new_empty<T>, py::name("__new__"), "an empty one, for __setstate__ to fill (fretwear.run makes a full one)"));
+  if (PyDict_SetItemString(type->tp_dict, "__new__", new_.ptr()) != 0) throw py::error_already_set();
+  PyType_Modified(type);
+}
+
+// __setstate__, which unpickling calls on what __new__ made. Bound under another name: pybind11 takes a method named
+// __setstate__ for a constructor, and a constructor called on a constructed object does nothing.
+template <class T, class F>
+void set_state_by(py::class_<T>& cls, F&& set) {
+  cls.attr("__setstate__") = py::cpp_function(std::forward<F>(set), py::name("set_state"), py::is_method(cls),
+                                              py::arg("state"), "the object again from what __getstate__ gave");
+}
+
 py::list validate(py::handle scene_arg, py::handle output_arg) {
   std::vector<std::string> problems;
   try {
@@ -469,7 +519,8 @@ complete default scene. Errors: SceneError (with .problems), ConvergenceError. U
   m.attr("ConvergenceError") = py::handle(g_convergence_error);
   m.attr("FretwearWarning") = py::handle(g_warning);
 
-  py::class_<Table>(m, "Table", R"doc(One CSV file's fields as numpy arrays: table.x, table["x"]; the same rows and
+  auto table = py::class_<Table>(m, "Table", py::is_final(),
+                                 R"doc(One CSV file's fields as numpy arrays: table.x, table["x"]; the same rows and
 columns as the file, each column named by its header without the unit ("p_Pa" is p) and in that unit (SI; the
 critical plane's angle in degrees). An empty CSV value is NaN. The arrays are read-only (every access hands out
 the same one): table.x.copy() gives an array to change. print(table) lists the columns with their units;
@@ -480,7 +531,7 @@ its column names, as a dict's keys ("p" in table, dict(table)); len(table) is th
            [](const Table& t, const std::string& name) -> py::object {
              for (const Column& c : t.columns())
                if (c.name == name) return c.values;
-             throw py::attribute_error(fmt::format("{} has no column \"{}\"", t.file(), name));
+             throw py::attribute_error(fmt::format("{} has no column {}", t.file(), quoted_name(name)));
            })
       // As a dict's: a key that is not a column name (of whatever type) is a KeyError, and not in the table.
       .def("__getitem__",
@@ -528,9 +579,10 @@ its column names, as a dict's keys ("p" in table, dict(table)); len(table) is th
            },
            "{column: numpy array}, in the CSV's order (pandas.DataFrame(table.to_dict()))")
       .def("__repr__", &Table::describe)
-      .def(py::pickle([](const Table& t) { return t.state(); },
-                      [](const py::tuple& state) { return Table::from_state(state); }))
+      .def("__getstate__", &Table::state)
       .def("__reduce_ex__", &reduce_by_state, py::arg("protocol"));
+  new_makes_an_empty_one(table);
+  set_state_by(table, [](Table& t, const py::tuple& state) { t = Table::from_state(state); });
 
   std::string result_doc = R"doc(What fretwear.run returns.
 
@@ -542,7 +594,7 @@ tables   {name: Table} of the tables below that the run produced
 One attribute per CSV file, None when the run does not produce it:
 )doc";
   for (const auto& [name, line] : table_names()) result_doc += fmt::format("  {:<15}{}\n", name, line);
-  auto result = py::class_<Result>(m, "Result", result_doc.c_str())
+  auto result = py::class_<Result>(m, "Result", py::is_final(), result_doc.c_str())
                     .def_readonly("summary", &Result::summary, "the dict of summary.json (SI units)")
                     .def_readonly("scene", &Result::scene, "the resolved scene, every default filled in")
                     .def_readonly("output", &Result::output, "the folder written (pathlib.Path), or None")
@@ -559,30 +611,34 @@ One attribute per CSV file, None when the run does not produce it:
                            std::string names;
                            for (const auto& [name, t] : r.tables) names += (names.empty() ? "" : ", ") + name;
                            return fmt::format("<fretwear.Result of scene \"{}\": {}>",
-                                              std::string(py::str(r.summary["scene"])), names);
+                                              std::string(py::str(r.summary.attr("get")("scene", ""))), names);
                          })
                     // (summary, scene, output, {name: Table}): a Result pickles whole, so that a process of a pool
                     // can return one.
-                    .def(py::pickle(
-                        [](const Result& r) {
-                          py::dict tables;
-                          for (const auto& [name, t] : r.tables) tables[py::str(name)] = t;
-                          return py::make_tuple(r.summary, r.scene, r.output, tables);
-                        },
-                        [](const py::tuple& state) {
-                          if (state.size() != 4) throw std::runtime_error("a pickled fretwear.Result holds 4 items");
-                          Result r;
-                          r.summary = state[0];
-                          r.scene = state[1];
-                          r.output = state[2];
-                          for (const auto& [name, t] : state[3].cast<py::dict>()) {
-                            if (!py::isinstance<Table>(t))
-                              throw std::runtime_error("a pickled fretwear.Result holds a table that is not one");
-                            r.tables[name.cast<std::string>()] = py::reinterpret_borrow<py::object>(t);
-                          }
-                          return r;
-                        }))
+                    .def("__getstate__",
+                         [](const Result& r) {
+                           py::dict tables;
+                           for (const auto& [name, t] : r.tables) tables[py::str(name)] = t;
+                           return py::make_tuple(r.summary, r.scene, r.output, tables);
+                         })
                     .def("__reduce_ex__", &reduce_by_state, py::arg("protocol"));
+  new_makes_an_empty_one(result);
+  set_state_by(result, [](Result& self, const py::tuple& state) {
+    if (state.size() != 4 || !py::isinstance<py::dict>(state[0]) || !py::isinstance<py::dict>(state[1]) ||
+        !py::isinstance<py::dict>(state[3]))
+      throw std::runtime_error(
+          "a pickled fretwear.Result holds 4 items: summary, scene, output, tables, the first, second and last dicts");
+    Result r;
+    r.summary = state[0];
+    r.scene = state[1];
+    r.output = state[2];
+    for (const auto& [name, t] : state[3].cast<py::dict>()) {
+      if (!py::isinstance<Table>(t))
+        throw std::runtime_error("a pickled fretwear.Result holds a table that is not one");
+      r.tables[name.cast<std::string>()] = py::reinterpret_borrow<py::object>(t);
+    }
+    self = std::move(r);
+  });
   for (const auto& [name, line] : table_names()) {
     const std::string key = name;
     result.def_property_readonly(

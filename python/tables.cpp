@@ -52,12 +52,22 @@ void Table::add_integers(std::string name, std::string meaning, const std::vecto
                       frozen(py::array_t<long>(py::ssize_t(values.size()), values.data()))});
 }
 
+std::string quoted_name(const std::string& name) {
+  std::string quoted = "\"";
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      quoted += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+    else
+      quoted += c;
+  return quoted + "\"";
+}
+
 const Column& Table::column(const std::string& name) const {
   for (const Column& c : columns_)
     if (c.name == name) return c;
   std::string names;
   for (const Column& c : columns_) names += (names.empty() ? "" : ", ") + c.name;
-  throw py::key_error(fmt::format("{} has no column \"{}\"; its columns: {}", file_, name, names));
+  throw py::key_error(fmt::format("{} has no column {}; its columns: {}", file_, quoted_name(name), names));
 }
 
 pybind11::tuple Table::state() const {
@@ -82,6 +92,7 @@ Table Table::from_state(const pybind11::tuple& state) {
 }
 
 std::string Table::describe() const {
+  if (file_.empty() && columns_.empty()) return "an empty fretwear.Table: no file, no columns";
   std::string s = fmt::format("{}: {}; {} rows\n", file_, meaning_, rows_);
   for (const Column& c : columns_)
     s += fmt::format("  {:<16} {:<8} {}\n", c.name, c.unit.empty() ? "label" : c.unit, c.meaning);

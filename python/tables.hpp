@@ -24,6 +24,7 @@ struct Column {
 
 class Table {
  public:
+  Table() = default;  // no file and no columns: what Table.__new__ makes, for __setstate__ to fill
   Table(std::string file, std::string meaning) : file_(std::move(file)), meaning_(std::move(meaning)) {}
   void add(std::string name, std::string unit, std::string meaning, const std::vector<double>& values);
   void add_labels(std::string name, std::string meaning, const std::vector<std::string>& values);
@@ -47,6 +48,10 @@ class Table {
   std::vector<Column> columns_;
   std::size_t rows_ = 0;
 };
+
+// A column name as a message quotes it: "name", its control characters escaped (\x00), since Python's exception
+// messages end at a NUL.
+std::string quoted_name(const std::string& name);
 
 // The tables of a run, by the CSV's stem ("contact", "cycle", "wear_history", ...): those the command line writes for
 // it, and no others.

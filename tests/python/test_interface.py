@@ -318,3 +318,48 @@ def test_a_result_pickles_and_a_pool_of_processes_can_return_one(tmp_path):
         theirs = pool.submit(run_elsewhere, scene).result()
     assert without_timings(theirs.summary) == without_timings(dict(result.summary, plots=[]))
     numpy.testing.assert_array_equal(theirs.cycle.q_top, result.cycle.q_top)
+
+
+def test_an_object_made_without_run_is_an_empty_one_and_cannot_be_a_half_made_one():
+    """Cls.__new__(Cls) is what unpickling calls before __setstate__, and anyone may call it: it gives an empty table
+    or result, never an object whose attributes read memory nothing wrote (a crash, or garbage such as len 3)."""
+    table = fretwear.Table.__new__(fretwear.Table)
+    assert len(table) == 0 and table.columns == [] and table.units == {} and "x" not in table and table.file == ""
+    assert repr(table) == "an empty fretwear.Table: no file, no columns"
+    with pytest.raises(AttributeError, match='has no column "x"'):
+        table.x
+    result = fretwear.Result.__new__(fretwear.Result)
+    assert result.summary == {} and result.scene == {} and result.output is None and result.tables == {}
+    assert result.contact is None and repr(result) == '<fretwear.Result of scene "": >'
+    # Every other way to an instance is refused by name, and neither class can be subclassed around that.
+    for cls in (fretwear.Table, fretwear.Result):
+        name = f"fretwear.{cls.__name__}"
+        for make, message in [(lambda: cls(), "No constructor defined"),
+                              (lambda: cls.__new__(cls, 1), "takes no arguments: fretwear.run makes one"),
+                              (lambda: cls.__new__(int), f"not {name}"),
+                              (lambda: object.__new__(cls), "is not safe"),
+                              (lambda: cls.__base__.__new__(cls), "is not safe"),
+                              (lambda: type("Mine", (cls,), {}), "not an acceptable base type")]:
+            with pytest.raises(TypeError, match=message):
+                make()
+    # __setstate__ fills what __new__ made, and refuses a state of another shape without touching it.
+    made = fretwear.run(example("hertz_normal", **{"grid.cells": 128}))
+    result.__setstate__(made.__getstate__())
+    same_result(made, result)
+    with pytest.raises(RuntimeError, match="holds 4 items"):
+        result.__setstate__((1, 2, 3, {}))
+    with pytest.raises(RuntimeError, match="a table that is not one"):
+        result.__setstate__(({}, {}, None, {"contact": 1}))
+    same_result(made, result)
+    table.__setstate__(made.contact.__getstate__())
+    assert repr(table) == repr(made.contact) and table.p is not made.contact.p
+    numpy.testing.assert_array_equal(table.p, made.contact.p)
+
+
+def test_a_column_name_with_a_nul_is_named_whole():
+    table = fretwear.run(example("hertz_normal", **{"grid.cells": 128})).contact
+    with pytest.raises(KeyError) as caught:  # a KeyError's str() is its message's repr
+        table["p\0q"]
+    assert caught.value.args == ('contact.csv has no column "p\\x00q"; its columns: x, gap0, p, gap, p_closed_form',)
+    with pytest.raises(AttributeError, match=r'has no column "p\\x1fq"'):
+        getattr(table, "p\x1fq")

@@ -299,7 +299,26 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
 
 int run(const std::string& path, bool quiet, bool verbose, bool resume, double checkpoint_every) {
   const Scene scene = load_scene(path);
-  const Preflight checked = preflight(scene, path, OutputCommand::run);  // refuses before anything is written
+  // Tests only: FRETWEAR_STAGE_QUIET_S, how long a stage runs before its parts are shown (s; 2 by default), so that a
+  // test sees the lines of stages that take milliseconds.
+  const char* quiet_stage = std::getenv("FRETWEAR_STAGE_QUIET_S");
+  ProgressLine progress(!quiet, ::isatty(STDERR_FILENO) != 0, quiet_stage ? std::atof(quiet_stage) : 2.0);
+  // From here a signal stops the run where it next asks, the checks before solving included: they march the first
+  // cycle of a wear run (seconds, at many increments a cycle), shown as the cycle stage shows it.
+  catch_stop_signals();
+  Preflight checked;
+  try {
+    checked = preflight(scene, path, OutputCommand::run, [&progress](const StagePart& part) {
+      if (progress.enabled()) progress.update(part);
+      return g_signal != 0;
+    });  // refuses before anything is written
+  } catch (const StopRequested& e) {
+    progress.finish();
+    std::cerr << fmt::format("fretwear: {}: {} (the checks before solving) by signal {}; nothing written\n",
+                             scene.name, e.what(), int(g_signal));
+    return kExitSignal + int(g_signal);
+  }
+  progress.finish();
   print_warnings(checked.warnings);
   if (!quiet && checked.wear_seconds > 60.0)
     std::cerr << fmt::format("fretwear: {}: the wear stage will take about {}\n", scene.name,
@@ -344,10 +363,6 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
   }
   OutputFolder out(scene.output_dir, OutputCommand::run);
   if (!quiet) std::cerr << fmt::format("fretwear: {}: normal contact on {} cells\n", scene.name, scene.cells);
-  // Tests only: FRETWEAR_STAGE_QUIET_S, how long a stage runs before its parts are shown (s; 2 by default), so that a
-  // test sees the lines of stages that take milliseconds.
-  const char* quiet_stage = std::getenv("FRETWEAR_STAGE_QUIET_S");
-  ProgressLine progress(!quiet, ::isatty(STDERR_FILENO) != 0, quiet_stage ? std::atof(quiet_stage) : 2.0);
   if (scene.wear) {
     // Tests only, at each step boundary: FRETWEAR_STEP_PAUSE_MS, a pause, so that a test's signal lands mid-run;
     // FRETWEAR_STOP_AT_STEP=N, SIGINT raised at the first boundary after N accepted steps (a Ctrl-C there, exactly);
@@ -388,7 +403,6 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     if (stop_in && std::string_view(stop_in) == stage && g_signal == 0) std::raise(SIGINT);
     return g_signal != 0;
   };
-  catch_stop_signals();
   // A scene refused while solving (a worn contact grown to the window's end) leaves nothing behind: not the
   // checkpoint, nor the folder made for it.
   std::error_code ec;

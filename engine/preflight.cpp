@@ -241,8 +241,10 @@ std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflig
   return problems;
 }
 
-Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command) {
+Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command,
+                    StopCheck stop) {
   Preflight result;
+  result.stop = std::move(stop);
   std::vector<std::string> problems = output_dir_problems(scene, scene_file, command);
   if (problems.empty() && command == OutputCommand::run) problems = checkpoint_problems(scene);
   const std::vector<std::string> physics =

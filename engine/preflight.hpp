@@ -49,8 +49,10 @@ std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflig
 
 // Every check of the scene before `command` solves it: output_dir_problems(), for `run` checkpoint_problems() (the
 // wear checkpoint's place beside output.dir), and physics_problems(). Throws
-// SceneError listing every problem. scene_file: where the scene was read ("" for a scene built in memory).
-Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command);
+// SceneError listing every problem. scene_file: where the scene was read ("" for a scene built in memory). `stop`
+// (Preflight::stop) is asked at each increment of a first cycle marched for `run`; a stop throws StopRequested.
+Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command,
+                    StopCheck stop = {});
 
 // A duration in the unit a person reads it in: "45 s", "12 min", "3.2 h", "41 days", "3.1e+04 years".
 std::string duration_words(double seconds);

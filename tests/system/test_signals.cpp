@@ -65,10 +65,12 @@ TEST_CASE("SIGINT twice in quick succession: no temporary file, and run --resume
 }
 
 // The load cycle marched in increments stops at its next increment: dissimilar bodies (steel on aluminium, the
-// coupled march) at 20 000 increments a cycle, 45 000 in all, some ten seconds, stopped one second in.
-TEST_CASE("SIGINT while the load cycle is marched: exit 130 within an increment, nothing written") {
+// coupled march) at 20 000 increments a cycle, 45 000 in all, some ten seconds, stopped one second in, within two
+// seconds, its progress shown as it marched, `said` on stderr, nothing written.
+namespace {
+
+void interrupt_the_march(json scene, const std::string& said) {
   Scratch s;
-  json scene = json::parse(read_file(fs::path(FRETWEAR_SOURCE_DIR) / "examples" / "dissimilar_cycle.json"));
   scene["effects"]["tangential"]["increments"] = 20000;
   scene["output"] = {{"dir", "out"}, {"plots", false}};
   s.write("d.json", scene.dump());
@@ -82,10 +84,28 @@ TEST_CASE("SIGINT while the load cycle is marched: exit 130 within an increment,
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
   CHECK_MESSAGE(r.exited(kInterrupted), "want exit 130, got " << r.describe());
   CHECK_MESSAGE(seconds < 2.0, "stopped " << seconds << " s after the signal");
-  CHECK_MESSAGE(r.err.find(" / 45000 increments, ") != std::string::npos, r.err);  // its progress, as it marched
-  CHECK_MESSAGE(r.err.find("stopped in the tangential stage by signal 2; nothing written") != std::string::npos,
-                r.err);
+  CHECK_MESSAGE(r.err.find(" / 45000 increments, ") != std::string::npos, r.err);
+  CHECK_MESSAGE(r.err.find(said) != std::string::npos, r.err);
   CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "changed: " << join(changes(before, s.snapshot())));
+}
+
+json dissimilar_cycle() {
+  return json::parse(read_file(fs::path(FRETWEAR_SOURCE_DIR) / "examples" / "dissimilar_cycle.json"));
+}
+
+}  // namespace
+
+TEST_CASE("SIGINT while the load cycle is marched: exit 130 within an increment, nothing written") {
+  interrupt_the_march(dissimilar_cycle(), "stopped in the tangential stage by signal 2; nothing written");
+}
+
+// A wear run's checks before solving march its first cycle (which the run then takes): a signal there stops them
+// alike, and no checkpoint is begun.
+TEST_CASE("SIGINT in the checks before a wear run marches its first cycle: exit 130, nothing written") {
+  json scene = dissimilar_cycle();
+  scene["effects"]["wear"] = {{"law", "archard"}, {"k", 1e-12}, {"cycles", 1e5}};
+  interrupt_the_march(scene,
+                      "stopped in the tangential stage (the checks before solving) by signal 2; nothing written");
 }
 
 // A stop outside the wear stage's step boundaries: in the stages after it (stress, crack, life) the run ends at

@@ -660,6 +660,8 @@ class IncrementalSlipSolver::HistoryRun : public Run {
     double P, Q, eps;
   };
 
+  friend class IncrementalSlipSolver;  // history_increments_at_most() splits a history as the march does
+
   LoopPoint loop_point() const override { return {prev_.P, prev_.Q, delta(p_now_, prev_.eps)}; }
   // The increments of one cycle and its phases, as indices into them.
   struct Cycle {
@@ -745,6 +747,17 @@ IncrementalResult IncrementalSlipSolver::solve_history(const ContactState& conta
   result.repeated = repeated;
   result.cycles_marched = cycle - 1;
   return result;
+}
+
+int IncrementalSlipSolver::history_increments_at_most(const IncrementalSlipOptions& options,
+                                                      const std::vector<HistoryPoint>& history) {
+  if (history.size() < 2) return 0;
+  const int m = options.increments_per_cycle;
+  const int m_settle = options.cycles > 1 && options.settling_increments > 0 ? options.settling_increments : m;
+  const int cycles = std::max(options.cycles, options.steady_cycles_max);
+  const int settling = int(HistoryRun::split(history, m_settle).targets.size());
+  const int steady = int(HistoryRun::split(history, m).targets.size());
+  return m_settle / 4 + (options.cycles - 1) * settling + (cycles - options.cycles + 1) * steady;
 }
 
 IncrementalSlipSolver::Run::Run(const IncrementalSlipSolver& solver, const ContactState& contact,

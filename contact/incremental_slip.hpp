@@ -251,6 +251,11 @@ class IncrementalSlipSolver {
 
   const IncrementalSlipOptions& options() const { return options_; }
 
+  // The increments solve_history() marches at most under `options` through `history`: its first loading and every
+  // cycle it may march before one repeats the one before (steady_cycles_max), each split as the march splits it.
+  static int history_increments_at_most(const IncrementalSlipOptions& options,
+                                        const std::vector<HistoryPoint>& history);
+
  private:
   class Run;           // what solve() and solve_history() carry from increment to increment (incremental_slip.cpp)
   class AmplitudeRun;  // solve(): Q, or δ, cycling 0 → +X → −X → +X under constant P

@@ -266,10 +266,12 @@ CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const Cycl
   if (plan.dissimilar()) options.cycles = 2;  // β ≠ 0: the first cycle after the first loading is not yet the steady one
   const bool history = !load.history.empty();
   // A stop asked for ends the march at its next increment. A constant amplitude marches the first loading (a
-  // quarter cycle) and `cycles` cycles; a history, cycles until steady: its count is not known beforehand.
+  // quarter cycle) and `cycles` cycles; a history, cycles until one repeats the one before: its total is the most it
+  // may march, and where it stops short of that its last part says so (done == total, what it marched).
   if (stop) {
     const int m = options.increments_per_cycle;
-    const double total = history ? 0.0 : double(m / 4 + options.cycles * m);
+    const double total = history ? double(IncrementalSlipSolver::history_increments_at_most(options, load.history))
+                                 : double(m / 4 + options.cycles * m);
     options.after_increment = [&stop, total](int marched) {
       stop_point(stop, StagePart{"tangential", double(marched), total, "increments"});
     };
@@ -278,6 +280,8 @@ CycleStage solve_steady_cycle(const Scene& scene, const Model& model, const Cycl
   const NormalCoupling coupling{plan.beta, model.g0};
   const IncrementalResult r = history ? solver.solve_history(normal.state, load, model.g0, &datum, &coupling)
                                       : solver.solve(normal.state, load, &datum, &coupling);
+  if (history && r.n_increments > 0)
+    stop_point(stop, StagePart{"tangential", double(r.n_increments), double(r.n_increments), "increments"});
   stage.ran = TangentialRoute::incremental;
   stage.route = plan.analogy_first() ? "incremental (auto: the analogy found reverse slip)" : plan.incremental_because;
   if (plan.dissimilar() && r.n_increments == 0)  // gross slip under force control: nothing marched

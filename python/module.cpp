@@ -211,9 +211,11 @@ class SignalCheck {
         PyErr_SetString(PyExc_SystemExit, kExiting);
         throw py::error_already_set();
       }
-      // The wear stage asks again at a record that ends a step: the callable hears of each place once.
-      if (!progress_->is_none() && total > 0.0 && (last_->stage != stage || last_->done != done)) {
-        *last_ = {stage, done};
+      // The wear stage asks again at a record that ends a step: the callable hears of each place once. A history's
+      // march, told against the most it may march, ends with what it marched as both done and total.
+      if (!progress_->is_none() && total > 0.0 &&
+          (last_->stage != stage || last_->done != done || last_->total != total)) {
+        *last_ = {stage, done, total};
         (*progress_)(stage, done, total, unit);
       }
     } catch (py::error_already_set& e) {
@@ -228,7 +230,7 @@ class SignalCheck {
  private:
   struct Told {
     std::string stage;
-    double done = -1.0;
+    double done = -1.0, total = -1.0;
   };
   std::shared_ptr<py::object> progress_;
   std::shared_ptr<Told> last_ = std::make_shared<Told>();

@@ -34,6 +34,20 @@ def test_progress_follows_every_stage_to_its_end():
         assert len(set(dones)) == len(dones), key  # each place once (a record that ends a step, too)
 
 
+def test_a_load_historys_march_is_told_against_the_most_it_may_take_and_ends_with_what_it_took():
+    """A history is marched until a cycle repeats the one before (at most 10 cycles): its total is that most, and the
+    last call, where it stopped, gives what it marched as done and total."""
+    calls = []
+    result = fretwear.run(example("hertz_history_out_of_phase", **{"grid.cells": 256}),
+                          progress=lambda *args: calls.append(args))
+    told = [(done, total) for stage, done, total, unit in calls if (stage, unit) == ("tangential", "increments")]
+    increments = 160
+    cycles = result.summary["cycle"]["history_cycles"]
+    marched = increments // 4 + cycles * increments  # its four segments are equal: each takes a quarter of them
+    assert cycles < 10 and told[-1] == (marched, marched)
+    assert told[:-1] == [(k, increments // 4 + 10 * increments) for k in range(1, marched + 1)]
+
+
 class Enough(Exception):
     pass
 

@@ -365,3 +365,47 @@ TEST_CASE("load history: a history that reaches |Q| >= fP is gross slip, reporte
   CHECK(r.cycles[0].slip_range.empty());
   CHECK(r.cycles[0].message.find("t = 1") != std::string::npos);
 }
+
+// The progress of a history's march is told against the most it may march (engine/cycle_stage.cpp): that bound is
+// what the march takes when it marches every cycle it may (steady_cycles_max reached, or 0 with `cycles` cycles,
+// settling ones included), and more than it takes when a cycle repeats earlier.
+TEST_CASE("load history: the most a march may take is what it takes when it marches every cycle it may") {
+  const double P = 1e5, Q = 0.5 * test::kHertzF * P;
+  Scene s = test::hertz_cycle(P, 0.0, 256);
+  s.Q_ratio.reset();
+  const Model m = make_model(s);
+  const NormalResult n = solve_normal(s, m);
+  // Segments of unequal length (0.7, 1.3 and 1 of the period's quarters), so that their increments round up.
+  const CyclicLoad uneven{P, 0.0, test::kHertzF, 0.0, 0.0,
+                          {{0.0, P, Q, 0.0}, {0.7, 0.7 * P, 0.0, 0.0}, {2.0, P, -Q, 0.0},
+                           {3.0, 1.3 * P, 0.0, 0.0}, {4.1, P, Q, 0.0}}};
+  struct Case {
+    const char* name;
+    CyclicLoad load;
+    int cycles, steady_cycles_max, settling;
+    bool every_cycle;  // the march takes every cycle it may
+  };
+  const Case cases[] = {{"uneven, exactly three cycles", uneven, 3, 0, 0, true},
+                        {"uneven, two cycles, the first at 12 increments", uneven, 2, 0, 12, true},
+                        {"shakedown capped at one cycle", shakedown_load(P, 0.4 * test::kHertzF * P), 1, 1, 0, true},
+                        {"uneven, until it repeats", uneven, 1, 10, 0, false}};
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    IncrementalSlipOptions o;
+    o.increments_per_cycle = 36;
+    o.cycles = c.cycles;
+    o.steady_cycles_max = c.steady_cycles_max;
+    o.settling_increments = c.settling;
+    int last_told = 0;
+    o.after_increment = [&last_told](int marched) { last_told = marched; };
+    const int at_most = IncrementalSlipSolver::history_increments_at_most(o, c.load.history);
+    const IncrementalResult r = IncrementalSlipSolver(*m.kernel, o).solve_history(n.state, c.load, m.g0);
+    MESSAGE(fmt::format("{}: {} increments marched in {} cycles, at most {}", c.name, r.n_increments,
+                        r.cycles_marched, at_most));
+    CHECK(last_told == r.n_increments);
+    if (c.every_cycle)
+      CHECK(r.n_increments == at_most);
+    else
+      CHECK(r.n_increments < at_most);
+  }
+}

@@ -37,6 +37,26 @@ void check_strain(const Scene& scene, const Model& model, const NormalResult& no
                                    "the composite modulus E* = {:.4g} Pa; half-plane linear elasticity needs strains "
                                    "well below one (at most {}): lower load.P, or give a larger profile",
                                    p_mean, strain, model.pair.E_star(), kMaxContactStrain));
+  // The bulk stress strains the specimen by σ / E: as much beyond linear elasticity past the same bound (a GPa given
+  // for a MPa, 3e11 Pa on steel, would slide the contact by a third of a millimetre).
+  const double E = scene.specimen.E;
+  auto check_bulk = [&](const std::string& key, double sigma) {
+    if (!(std::abs(sigma) / E <= kMaxContactStrain))
+      problems.push_back(fmt::format("{}: the bulk stress {:.4g} Pa is {:.3g} times the specimen's modulus E = {:.4g} "
+                                     "Pa; linear elasticity needs strains well below one (at most {}): is it in Pa?",
+                                     key, sigma, std::abs(sigma) / E, E, kMaxContactStrain));
+  };
+  check_bulk("load.bulk_stress.amplitude", scene.bulk_stress);
+  auto check_history = [&](const std::string& key, const std::vector<std::array<double, 4>>& history) {
+    for (std::size_t k = 0; k < history.size(); ++k)
+      if (!(std::abs(history[k][3]) / E <= kMaxContactStrain)) {
+        check_bulk(fmt::format("{}[{}][3]", key, k), history[k][3]);
+        return;  // the first such point: the others are the same slip of units
+      }
+  };
+  check_history("load.history", scene.history);
+  for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+    check_history(fmt::format("load.blocks[{}].history", b), scene.blocks[b].history);
 }
 
 // Gross slip wears the contact flat and never stops: every contact cell slides the stroke each cycle, the worn area

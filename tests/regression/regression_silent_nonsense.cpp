@@ -61,6 +61,33 @@ TEST_CASE("a radius so small that the contact strain passes linear elasticity is
   }
 }
 
+// A bulk stress in GPa where MPa were meant (3e11 Pa on steel, 1.5 times E) completed with a slip of a third of a
+// millimetre; in a history's point too. Refused by run and by validate, naming the key, nothing written.
+TEST_CASE("a bulk stress that strains the specimen past linear elasticity is refused, naming its key") {
+  Scratch scratch{"bulk"};
+  const std::string cycle = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+    "grid": {"cells": 256}, "effects": {"tangential": {}}, "load": )";
+  const std::pair<std::string, std::string> cases[] = {
+      {R"({"P": 1e5, "Q": {"ratio": 0.5}, "bulk_stress": {"amplitude": 3e11}})",
+       "load.bulk_stress.amplitude: the bulk stress 3e+11 Pa is 1.5 times the specimen's modulus"},
+      {R"({"P": 1e5, "history": [[0, 1e5, 2e4, 0], [1, 1e5, -2e4, -2e10], [2, 1e5, 2e4, 0]]})",
+       "load.history[1][3]: the bulk stress -2e+10 Pa is 0.1 times the specimen's modulus"}};
+  for (const auto& [load, said] : cases) {
+    CAPTURE(load);
+    write_file(scratch.path / "s.json", cycle + load + "}");
+    for (const char* command : {"run", "validate"}) {
+      const Outcome o = run_program(scratch.path, {command, "s.json"});
+      CAPTURE(o.all());
+      CHECK(o.status == 2);
+      CHECK(o.err.find(said) != std::string::npos);
+      CHECK(snapshot(scratch.path).size() == 1);
+    }
+  }
+  // 1e9 Pa, a strain of 0.005, is a bulk stress like any other.
+  write_file(scratch.path / "s.json", cycle + R"({"P": 1e5, "Q": {"ratio": 0.5}, "bulk_stress": {"amplitude": 1e9}}})");
+  CHECK(run_program(scratch.path, {"validate", "s.json"}).status == 0);
+}
+
 TEST_CASE("a crack a metre long, or a metre outside the window, warns") {
   const std::string base = "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
     "load": {"P": 1e5}, "grid": {"cells": 256}, "effects": {"crack": )";

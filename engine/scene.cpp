@@ -703,8 +703,28 @@ double Scene::Q_max() const {
   return 0.0;
 }
 
+namespace {
+
+// A problem as printed: the control characters a scene's strings and keys may hold (a NUL, which ends a C string and
+// with it every problem after it, an escape sequence) written as JSON writes them, \u0000.
+std::vector<std::string> printable(std::vector<std::string> problems) {
+  for (std::string& p : problems) {
+    std::string out;
+    for (const char c : p)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') || c == 0x7f)
+        out += fmt::format("\\u{:04x}", static_cast<unsigned char>(c));
+      else
+        out += c;
+    p = std::move(out);
+  }
+  return problems;
+}
+
+}  // namespace
+
 SceneError::SceneError(std::vector<std::string> problems)
-    : InputError("the scene is invalid:\n  " + join(problems, "\n  ")), problems_(std::move(problems)) {}
+    : InputError("the scene is invalid:\n  " + join(printable(problems), "\n  ")),
+      problems_(printable(std::move(problems))) {}
 
 namespace {
 
@@ -1351,6 +1371,14 @@ void parse_output(Reader& top, Scene& s, std::vector<std::string>& problems) {
       if (auto dir = r.string("dir", std::nullopt, "a folder path")) {
         if (dir->empty()) r.problem("output.dir", "is empty; give a folder path");
         if (holds_nul(*dir)) r.problem("output.dir", fmt::format("{} {}", json(*dir).dump(), kHoldsNul));
+        // A shell expands these, and fretwear would make a folder named "~" here, whose removal by hand
+        // (rm -r ~/...) is the home folder's.
+        if (!dir->empty() && (dir->front() == '~' || dir->front() == '$'))
+          r.problem("output.dir", fmt::format("{} starts with {}, which a shell expands ({}) and fretwear does not: it "
+                                              "would make a folder named {} here; give the path itself",
+                                              json(*dir).dump(), dir->front(),
+                                              dir->front() == '~' ? "the home folder" : "a variable",
+                                              json(dir->substr(0, dir->find('/'))).dump()));
         s.output_dir = *dir;
       }
     s.plots = r.boolean("plots", true).value_or(true);

@@ -65,3 +65,13 @@ TEST_CASE("a denormal modulus passed validate and failed in run: now both refuse
   both(R"({"name": "s", "materials": {"both": {"E": 1e-310, "nu": 0.3}},
     "profile": {"type": "cylinder", "R": 0.01}, "load": {"P": 1e5}})", 2, "materials.both.E");
 }
+
+// A NUL in a scene's string or key ended the message there: `name: "p` and nothing of the problems after it.
+TEST_CASE("a NUL in a scene's strings cut every problem after it: now each is printed, the NUL as \\u0000") {
+  const Outcome o = both(R"({"name": "p\u0000x", "\u0000bad": 1, "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cyl\u0000inder", "R": 0.01}, "load": {"P": 1e5}})",
+                         2, R"(name: "p\u0000x" cannot name a folder)");
+  CHECK(o.err.find(R"(profile.type: "cyl\u0000inder" is not a profile type)") != std::string::npos);
+  CHECK(o.err.find(R"(\u0000bad: unknown key)") != std::string::npos);
+  CHECK(o.err.find('\0') == std::string::npos);
+}

@@ -1,7 +1,9 @@
 #include "engine/checkpoint.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -135,18 +137,13 @@ std::uint64_t scene_hash(const Scene& scene) {
   return h;
 }
 
-namespace {
-
-// fnv1a64() of the CBOR of j without its "checksum": what "checksum" holds. The CBOR of a document read back is the
-// CBOR it was read from (its keys in order, each number in the form its value takes), so a checkpoint whose bytes
-// changed after it was written no longer has it.
-std::string content_checksum(json j) {
+// The CBOR of a document read back is the CBOR it was read from (its keys in order, each number in the form its value
+// takes), so a checkpoint whose bytes changed after it was written no longer has its checksum.
+std::string checkpoint_checksum(json j) {
   j.erase("checksum");
   const std::vector<std::uint8_t> bytes = json::to_cbor(j);
   return fnv1a64(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
-
-}  // namespace
 
 std::optional<json> read_checkpoint(const std::filesystem::path& path, const Scene& scene) {
   std::error_code ec;
@@ -161,7 +158,7 @@ std::optional<json> read_checkpoint(const std::filesystem::path& path, const Sce
                                  "it cannot be resumed. Delete it, or run without --resume",
                                  path.string(), j.value("fretwear", "?"), j.value("format_version", 0), kVersion,
                                  kCheckpointFormat));
-  if (!j.contains("checksum") || j["checksum"] != content_checksum(j))
+  if (!j.contains("checksum") || j["checksum"] != checkpoint_checksum(j))
     throw InputError(fmt::format("{}: damaged: its content no longer has the checksum it was written with, so "
                                  "what it holds cannot be trusted; delete it and run without --resume",
                                  path.string()));
@@ -175,7 +172,7 @@ std::optional<json> read_checkpoint(const std::filesystem::path& path, const Sce
 
 void write_checkpoint(const std::filesystem::path& path, const json& j) {
   json sealed = j;
-  sealed["checksum"] = content_checksum(j);
+  sealed["checksum"] = checkpoint_checksum(j);
   const std::vector<std::uint8_t> bytes = json::to_cbor(sealed);
   const DeferredStopSignals hold;  // no temporary file left by a signal
   if (path.has_parent_path()) {
@@ -261,9 +258,22 @@ DriveState resume_wear(const json& j, const Scene& scene, std::vector<double>& w
     throw InputError("checkpoint: written by another stepper or grid");
   const DriveState at{j.at("cycles").get<double>(), j.at("dN").get<double>(), j.at("next_record").get<std::size_t>(),
                       j.at("steps").get<long>()};
+  const std::size_t n = w.size();
   w = unblob(j.at("w"));
   records.clear();
   for (const json& r : j.at("records")) records.push_back(record_from(r));
+  // What the checksum cannot vouch for, since anyone can write one: the vectors on this grid, the counts in range.
+  // The state w may hold more than one value a cell (each body's wear in its own frame); a record's fields, one.
+  const std::size_t cells = std::size_t(scene.cells);
+  auto per_cell = [cells](const std::vector<double>& v) { return v.size() == cells; };
+  bool fits = w.size() == n && std::all_of(w.begin(), w.end(), [](double wi) { return std::isfinite(wi); }) && std::isfinite(at.N) && at.N >= 0.0 && std::isfinite(at.dt) && at.dt > 0.0 &&
+              at.steps >= 0;
+  for (const WearRecord& r : records)
+    fits = fits && per_cell(r.w) && per_cell(r.p) && per_cell(r.s) && (r.q.empty() || per_cell(r.q)) &&
+           r.cycles >= 0.0 && r.cycles <= at.N;
+  if (!fits)
+    throw InputError("checkpoint: damaged: its wear, its records or its counts do not fit this scene's grid of " +
+                     std::to_string(cells) + " cells");
   return at;
 }
 

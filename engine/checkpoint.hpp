@@ -46,6 +46,9 @@ std::vector<std::string> checkpoint_problems(const Scene& scene);
 bool is_checkpoint_file(const std::filesystem::path& path);
 // FNV-1a (64 bit) of the resolved scene's JSON: two scenes that resolve alike share a checkpoint.
 std::uint64_t scene_hash(const Scene& scene);
+// fnv1a64() of the CBOR of j without its "checksum": what "checksum" holds. It tells a checkpoint damaged after it was
+// written; anyone can write one, so what it holds is still checked against the scene when resumed.
+std::string checkpoint_checksum(nlohmann::json j);
 // The checkpoint at `path` for this scene, or nothing when there is none. Throws InputError when the file is not a
 // fretwear checkpoint, has another format or fretwear version, is damaged (its checksum), or belongs to another
 // scene.

@@ -632,9 +632,21 @@ DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save,
   if (control_.resume) {
     const json& j = *control_.resume;
     s = resume_wear(j, scene_, w_, stage_.records);
+    // Where the run stood, among the record times it drives through (drive_times: times[next - 1] <= N <= times[next]).
+    const bool placed = s.next >= 1 && s.next <= times_.size() && times_[s.next - 1] <= s.N &&
+                        (s.next == times_.size() ? s.N <= times_.back() : s.N <= times_[s.next]);
+    if (!placed)
+      throw InputError(fmt::format("checkpoint: damaged: it stands at cycle {:.6g} before record {} of {}, which this "
+                                   "scene's wear run ({:.6g} to {:.6g} cycles) never does",
+                                   s.N, s.next, times_.size(), times_.front(), times_.back()));
+    if (blocks_ && j.at("blocks").at("earlier_records").get<std::size_t>() > stage_.records.size())
+      throw InputError("checkpoint: damaged: it counts more earlier records than it holds");
     if (blocks_)  // the checkpoint holds every record; this block's follow the earlier blocks'
       stage_.records.erase(stage_.records.begin(),
                            stage_.records.begin() + std::ptrdiff_t(j.at("blocks").at("earlier_records").get<std::size_t>()));
+    else if (stage_.records.size() != s.next)  // one record at each record time reached, the start's included
+      throw InputError(fmt::format("checkpoint: damaged: it holds {} records where it has reached {}",
+                                   stage_.records.size(), s.next));
     contact_.restore(j.at("contact"));
     restore(j.at("stepper_state"));
     stage_.resumed_from = s.N;
@@ -1082,8 +1094,10 @@ bool bodies_in_own_frames(const Scene& scene, const Model& model, const CycleSta
          c.sliding_amplitude > 0.5 * model.grid.h() && scene.blocks.empty();
 }
 
-WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
-                   const WearControl& control) {
+namespace {
+
+WearStage wear_stage(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
+                     const WearControl& control) {
   const WearEffect& effect = *scene.wear;
   const wear::WearLaw law{effect.law, effect.coefficient, *scene.friction,
                           effect.pad_fraction};
@@ -1155,6 +1169,22 @@ WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& n
   if (first.rate_max == 0.0) return stage;
   settle(scene, model, cycle, stage);
   return stage;
+}
+
+}  // namespace
+
+WearStage run_wear(const Scene& scene, const Model& model, const NormalResult& normal, const CycleStage& cycle,
+                   const WearControl& control) {
+  if (!control.resume) return wear_stage(scene, model, normal, cycle, control);
+  // A checkpoint whose checksum holds but whose content is not a checkpoint of this scene's (anyone can write a
+  // checksum): a key missing or of another type is the checkpoint's fault, not fretwear's.
+  try {
+    return wear_stage(scene, model, normal, cycle, control);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: damaged: it does not hold what a checkpoint of this scene holds ({}); delete it "
+                                 "and run without --resume",
+                                 control.checkpoint.string(), e.what()));
+  }
 }
 
 namespace {

@@ -5,9 +5,12 @@
 // Ctrl-C there makes), FRETWEAR_KILL_AT_STEP=N ends the program there as SIGKILL would (nothing written after the
 // last checkpoint). Real signals land on a run slowed by FRETWEAR_STEP_PAUSE_MS (2 ms a step) in the last case.
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <set>
@@ -19,6 +22,7 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/checkpoint.hpp"
 #include "support.hpp"
 #include "system/program.hpp"
 
@@ -276,6 +280,49 @@ TEST_CASE("--resume refuses a damaged checkpoint, and a run without --resume say
   // A run with nothing to replace says nothing of checkpoints.
   const Outcome again = s.fretwear({"run", "s.json"});
   CHECK(again.all().find("checkpoint") == std::string::npos);
+}
+
+// The checksum tells a checkpoint damaged after it was written, but anyone can write one: a checkpoint re-signed after
+// an edit is still checked against the scene, and refused (exit 2, nothing written) where it does not fit it. Its wear
+// emptied was a segmentation fault, one value of it a read past its end; its records replaced by numbers an internal
+// error (exit 1); its place past the last record a run reported completed at a fraction of its cycles.
+TEST_CASE("--resume refuses a re-signed checkpoint whose content does not fit the scene") {
+  Scratch s;
+  s.write("s.json", scene());
+  const fs::path out = s.work / "out" / "resume", checkpoint = s.work / "out" / "resume.checkpoint";
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "5"}}).exited(kInterrupted));
+  const std::string original = read_file(checkpoint), kept = read_file(out / "summary.json");
+  const json j0 = json::from_cbor(original);
+  REQUIRE(j0.at("checksum") == fretwear::checkpoint_checksum(j0));
+  const std::vector<std::pair<std::string, std::function<void(json&)>>> edits = {
+      {"wear emptied", [](json& j) { j["w"] = json::binary({}); }},
+      {"wear of one value", [](json& j) { j["w"] = json::binary(std::vector<std::uint8_t>(8, 0)); }},
+      {"wear not a number",
+       [](json& j) {
+         auto bytes = j["w"].get_binary();
+         const double nan = std::nan("");
+         std::memcpy(bytes.data(), &nan, sizeof nan);
+         j["w"] = json::binary(bytes);
+       }},
+      {"records replaced by numbers", [](json& j) { j["records"] = {1, 2, 3}; }},
+      {"records dropped", [](json& j) { j["records"] = json::array(); }},
+      {"past the last record", [](json& j) { j["next_record"] = 1000; }},
+      {"past the last cycle", [](json& j) { j["cycles"] = 1e300; }},
+      {"its contact gone", [](json& j) { j.erase("contact"); }}};
+  for (const auto& [what, edit] : edits) {
+    CAPTURE(what);
+    json j = j0;
+    edit(j);
+    j["checksum"] = fretwear::checkpoint_checksum(j);
+    const std::vector<std::uint8_t> bytes = json::to_cbor(j);
+    write_file(checkpoint, std::string(bytes.begin(), bytes.end()));
+    const Outcome o = s.fretwear({"run", "--resume", "s.json", "-q"});
+    CHECK_MESSAGE(o.exited(kInvalid), o.describe());
+    CHECK_MESSAGE(o.all().find("checkpoint: damaged") != std::string::npos, o.all());
+    CHECK(read_file(out / "summary.json") == kept);
+  }
+  write_file(checkpoint, original);  // as written, it resumes
+  CHECK(s.fretwear({"run", "--resume", "s.json", "-q"}).exited(kDone));
 }
 
 TEST_CASE("--resume refuses another scene's checkpoint, and without one runs from the start") {

@@ -737,6 +737,7 @@ struct Given {
   bool effects_unknown = false;  // effects given but not an object: what they need is unknown
   bool loads_unknown = false;    // load.blocks given but its first block's load is unreadable
   bool wear_cycles_ok = true;    // effects.wear.cycles as given (the blocks' total is checked against it)
+  bool blocks_cycles_ok = true;  // every load.blocks[k].cycles as given
   std::optional<LoadControl> control = LoadControl::force;  // nullopt: an invalid word
 };
 
@@ -893,6 +894,7 @@ void parse_blocks(const json* bv, Reader& r, Scene& s, Given& given, std::vector
                                   {[](double v) { return v >= 1.0 && v <= 1e12 && v == std::floor(v); },
                                    "a whole number of cycles from 1 to 1e12"});
     block.cycles = cycles.value_or(1.0);
+    if (!cycles) given.blocks_cycles_ok = false;  // the total is then no check of effects.wear.cycles
     rb.finish();
     s.blocks.push_back(std::move(block));
   }
@@ -1406,7 +1408,7 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
         problems.push_back("load.blocks: given without effects.wear; the cycle effect computes one steady cycle, and "
                            "only the wear stage runs the blocks one after another: add effects.wear, or give the one "
                            "load as load.Q, load.delta or load.history");
-      else if (given.wear_cycles_ok && s.wear->cycles != total)
+      else if (given.wear_cycles_ok && given.blocks_cycles_ok && s.wear->cycles != total)
         problems.push_back(fmt::format("effects.wear.cycles: {} is not the blocks' total, {}; the wear runs "
                                        "load.blocks once, in order: give their sum",
                                        s.wear->cycles, total));

@@ -75,3 +75,12 @@ TEST_CASE("a NUL in a scene's strings cut every problem after it: now each is pr
   CHECK(o.err.find(R"(\u0000bad: unknown key)") != std::string::npos);
   CHECK(o.err.find('\0') == std::string::npos);
 }
+
+// A block's cycles refused (0) drew a second, false problem: the blocks' total, counted with a stand-in 1, did not
+// match effects.wear.cycles.
+TEST_CASE("a block's invalid cycles drew a false 'not the blocks' total': now one message") {
+  const Outcome o = both(kHead + R"("friction": 0.5, "load": {"P": 1e5, "blocks": [{"Q": {"ratio": 0.5}, "cycles": 0},
+    {"Q": {"ratio": 0.6}, "cycles": 1e6}]}, "effects": {"wear": {"law": "archard", "k": 1e-12, "cycles": 1e6}}})",
+                         2, "load.blocks[0].cycles: 0 is not allowed");
+  CHECK(count(o.all(), "effects.wear.cycles") == 0);
+}

@@ -40,13 +40,22 @@ Variation parse_variation(const std::string& text) {
     throw InputError(fmt::format("--vary \"{}\": give key=v1,v2,... (a dotted scene key such as load.Q.ratio)", text));
   Variation v{text.substr(0, eq), {}};
   // A JSON array lists values of any kind, lists and objects too: grid.window=[[-2e-4,2e-4],[-3e-4,3e-4]].
+  // One that opens with [ and is no JSON is refused as such, not split at its commas into words.
   if (text[eq + 1] == '[') {
-    const json list = json::parse(text.substr(eq + 1), nullptr, false);
-    if (list.is_array()) {
-      if (list.empty()) throw InputError(fmt::format("--vary \"{}\": an empty list of values", text));
-      v.values.assign(list.begin(), list.end());
-      return v;
+    json list;
+    try {
+      list = json::parse(text.substr(eq + 1));
+    } catch (const json::exception& e) {
+      std::string why = e.what();
+      if (const auto bracket = why.find("] "); why.starts_with("[json.exception.") && bracket != std::string::npos)
+        why = why.substr(bracket + 2);
+      throw InputError(fmt::format("--vary \"{}\": the values open with [ but are not a JSON list ({}); give a JSON "
+                                   "list of finite numbers, lists or strings, or v1,v2,...",
+                                   text, why));
     }
+    if (list.empty()) throw InputError(fmt::format("--vary \"{}\": an empty list of values", text));
+    v.values.assign(list.begin(), list.end());
+    return v;
   }
   std::stringstream values(text.substr(eq + 1));
   for (std::string item; std::getline(values, item, ',');) {

@@ -164,6 +164,12 @@ TEST_CASE("a varied value JSON cannot hold as a number is refused saying why, ne
   CHECK(message("load.Q.ratio=.5").find(".5 is a number JSON does not write") != std::string::npos);
   CHECK(message("load.Q.ratio=.5").find("give it as 0.5") != std::string::npos);
   CHECK(message("load.Q.ratio=0.5,abc").empty());  // a word stays a word: the scene's check names the key
+  // Opened as a JSON list, refused as one (it was split at its commas into the words "[1e5" and " NaN]").
+  CHECK(message("load.P=[1e5, NaN]").find("the values open with [ but are not a JSON list (parse error") !=
+        std::string::npos);
+  CHECK(message("load.P=[1e5, 1e309]").find("the values open with [ but are not a JSON list (number overflow") !=
+        std::string::npos);
+  CHECK(message("load.P=[1e5][2e5]").find("not a JSON list") != std::string::npos);
 }
 
 TEST_CASE("values given as a JSON array may be lists: a sweep over grid.window runs each window") {

@@ -433,7 +433,7 @@ bool has_marker(const fs::path& dir) {
   return fs::is_regular_file(dir / kOutputMarker, ec);
 }
 
-bool killed_leftover(const fs::path& dir, long pid) {
+bool killed_leftover(const fs::path& dir, long pid, std::vector<std::string>* foreign) {
   std::error_code ec;
   if (!fs::is_directory(fs::symlink_status(dir, ec))) return false;
   // Killed between the folder's making and its marker's: empty, its process gone.
@@ -441,7 +441,11 @@ bool killed_leftover(const fs::path& dir, long pid) {
   const Marker m = read_marker(dir);
   if (m.kind != "staging" || m.j.value("pid", -1L) != pid || m.j.value("host", "") != this_process().host)
     return false;
-  return process_ended(m.j) && foreign_entries(dir).empty();
+  if (!process_ended(m.j)) return false;
+  std::vector<std::string> found = foreign_entries(dir);
+  if (found.empty()) return true;
+  if (foreign) *foreign = std::move(found);
+  return false;
 }
 
 std::vector<std::string> foreign_entries(const fs::path& dir, const std::vector<std::string>& carried) {

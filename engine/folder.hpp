@@ -52,8 +52,9 @@ std::vector<std::string> foreign_entries(const std::filesystem::path& dir,
 bool has_marker(const std::filesystem::path& dir);
 
 // True when `dir`, named as the staging folder of process `pid` (<name>.partial-<pid>, <name>.old-<pid>), is one a
-// killed command left, which a command writing beside it may remove: the rule below kStagingSuffix.
-bool killed_leftover(const std::filesystem::path& dir, long pid);
+// killed command left, which a command writing beside it may remove: the rule below kStagingSuffix. When it is one
+// but for entries of the user's in it, and `foreign` is given, those entries are put there.
+bool killed_leftover(const std::filesystem::path& dir, long pid, std::vector<std::string>* foreign = nullptr);
 
 // The commands that write results, each into its own folder: run into output.dir, convergence and sweep into their
 // subfolders of it (output_folder()), so that no command removes another's results.

@@ -283,7 +283,8 @@ std::string clock_time(double seconds) {
 // sweep.partial-<pid>, renamed here to sweep.resume-<pid> so that the staging of this sweep does not remove it, and
 // those of earlier resumes; newest first. Only folders a killed sweep left (killed_leftover(): a staging marker of a
 // process that has ended, holding nothing fretwear did not write); a copy of the user's so named stays untouched.
-std::vector<fs::path> take_over_killed(const fs::path& dir) {
+// A killed sweep's folder that holds files of the user's is left whole, and said in `passed` with those files.
+std::vector<fs::path> take_over_killed(const fs::path& dir, std::vector<std::string>& passed) {
   std::vector<std::pair<fs::file_time_type, fs::path>> found;
   const fs::path parent = dir.parent_path();
   const std::string name = dir.filename().string(), own = std::to_string(::getpid());
@@ -296,7 +297,15 @@ std::vector<fs::path> take_over_killed(const fs::path& dir) {
       const std::string pid = entry.substr(prefix.size());
       if (pid.empty() || pid == own || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
         continue;
-      if (!killed_leftover(e.path(), std::stol(pid))) continue;  // a copy of the user's, or a sweep still running
+      std::vector<std::string> foreign;
+      if (!killed_leftover(e.path(), std::stol(pid), &foreign)) {  // a copy of the user's, or a sweep still running
+        if (!foreign.empty())
+          passed.push_back(fmt::format("sweep: \"{}\" is a stopped sweep's folder but holds what fretwear did not "
+                                       "write ({}): its runs are not taken and it is left as it is; move that "
+                                       "out of it to resume from it",
+                                       e.path().string(), fmt::join(foreign, ", ")));
+        continue;
+      }
       fs::path at = e.path();
       if (kind == std::string(".partial-")) {
         const fs::path renamed = parent / (name + ".resume-" + pid);
@@ -541,11 +550,12 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   // where the runs go.
   std::optional<OutputFolder> out;
   std::vector<fs::path> killed;
+  std::vector<std::string> passed;  // stopped sweeps' folders left whole for the user's files in them
   std::vector<std::size_t> todo;
   std::size_t from_killed = 0, from_finished = 0;  // runs kept from killed sweeps, from the last finished one
   std::string runs_dir;
   if (result.root) {
-    if (options.resume) killed = take_over_killed(result.dir);
+    if (options.resume) killed = take_over_killed(result.dir, passed);
     out.emplace(result.dir, OutputCommand::sweep);
     fs::create_directories(out->path("runs"));
     for (std::size_t k = 0; k < scenes.size(); ++k) {
@@ -585,13 +595,17 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   if (options.progress && result.root) {
     *options.progress << fmt::format("sweep: {} runs", result.runs.size());
     if (options.resume) {
-      if (kept == 0) *options.progress << ", 0 kept (no complete run of the same resolved scene was found)";
+      if (kept == 0)
+        *options.progress << (passed.empty() ? ", 0 kept (no complete run of the same resolved scene was found)"
+                                             : ", 0 kept");
       if (from_killed > 0)
         *options.progress << fmt::format(", {} kept from the {}", from_killed,
                                          killed.size() == 1 ? "sweep that was stopped" : "sweeps that were stopped");
       if (from_finished > 0) *options.progress << fmt::format(", {} kept from the last finished sweep", from_finished);
     }
-    *options.progress << "\n" << std::flush;
+    *options.progress << "\n";
+    for (const std::string& line : passed) *options.progress << line << "\n";
+    *options.progress << std::flush;
   }
   const auto started = std::chrono::steady_clock::now();
   std::size_t finished = 0;

@@ -114,6 +114,12 @@ TEST_CASE("--resume keeps the complete runs of a sweep killed while a run's fold
   const Outcome again = t.fretwear(args("s.json", {"--jobs", "2", "--resume"}));
   REQUIRE_MESSAGE(again.exited(kDone), again.describe());
   CHECK_MESSAGE(again.err.find("0 kept") != std::string::npos, again.err);
+  // It says why: the stopped sweep's folder, the user's file in it, and what to do.
+  CHECK_MESSAGE(again.err.find(stopped.string() + "\" is a stopped sweep's folder but holds what fretwear did not "
+                               "write (runs/x.partial-4999999/)") != std::string::npos,
+                again.err);
+  CHECK_MESSAGE(again.err.find("move that out of it to resume from it") != std::string::npos, again.err);
+  CHECK_MESSAGE(again.err.find("no complete run of the same resolved scene") == std::string::npos, again.err);
   CHECK(read_file(stopped / "runs" / "x.partial-4999999" / "notes.txt") == "the user's\n");
 }
 

@@ -298,7 +298,7 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
 }
 
 int run(const std::string& path, bool quiet, bool verbose, bool resume, double checkpoint_every) {
-  const Scene scene = load_scene(path);
+  const Scene scene = load_scene_for(path, OutputCommand::run);
   // Tests only: FRETWEAR_STAGE_QUIET_S, how long a stage runs before its parts are shown (s; 2 by default), so that a
   // test sees the lines of stages that take milliseconds.
   const char* quiet_stage = std::getenv("FRETWEAR_STAGE_QUIET_S");
@@ -479,7 +479,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
 }
 
 int validate(const std::string& path, bool quiet, bool verbose) {
-  const Scene scene = load_scene(path);
+  const Scene scene = load_scene_for(path, OutputCommand::run);
   const Preflight checked = preflight(scene, path, OutputCommand::run);
   print_warnings(checked.warnings);
   if (!quiet) {
@@ -495,7 +495,7 @@ int validate(const std::string& path, bool quiet, bool verbose) {
 
 int convergence(const std::string& path, int from, int to, bool quiet) {
   if (const std::string problem = grid_range_problem(from, to); !problem.empty()) throw InputError(problem);
-  const Scene scene = load_scene(path);
+  const Scene scene = load_scene_for(path, OutputCommand::convergence);
   preflight(scene, path, OutputCommand::convergence);
   const std::filesystem::path dir = output_folder(scene, OutputCommand::convergence);
   OutputFolder out(dir, OutputCommand::convergence);

@@ -54,6 +54,10 @@ std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflig
 Preflight preflight(const Scene& scene, const std::filesystem::path& scene_file, OutputCommand command,
                     StopCheck stop = {});
 
+// load_scene(), and when the scene is invalid, its output folder's problems for `command` with the rest, where the
+// folder could be read: every problem at once.
+Scene load_scene_for(const std::filesystem::path& scene_file, OutputCommand command);
+
 // A duration in the unit a person reads it in: "45 s", "12 min", "3.2 h", "41 days", "3.1e+04 years".
 std::string duration_words(double seconds);
 

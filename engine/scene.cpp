@@ -1566,7 +1566,14 @@ Scene parse_scene(const json& j, const std::string& default_name, const std::fil
   top.finish();
   check_needs(s, given, problems);
   check_window(s, given, problems);
-  if (!problems.empty()) throw SceneError(std::move(problems));
+  if (!problems.empty()) {
+    const bool folder_read = std::none_of(problems.begin(), problems.end(), [](const std::string& p) {
+      return p.starts_with("output") || p.starts_with("name:");
+    });
+    SceneError e(std::move(problems));
+    if (folder_read) e.output_dir = s.output_dir;
+    throw e;
+  }
   return s;
 }
 
@@ -1792,13 +1799,17 @@ Scene parse_scene_text(std::string_view text, const std::string& default_name, c
   if (const auto nul = text.find('\0'); nul != std::string_view::npos)
     throw SceneError({fmt::format("{}: holds a NUL byte on line {}; a scene is UTF-8 text", source,
                                   1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'))});
+  std::optional<std::filesystem::path> output_dir;
   try {
     Scene s = parse_scene(j, default_name, scene_dir);
     if (problems.empty()) return s;
   } catch (const SceneError& e) {
+    if (problems.empty()) output_dir = e.output_dir;  // a key given twice may be the folder's
     problems.insert(problems.end(), e.problems().begin(), e.problems().end());
   }
-  throw SceneError(std::move(problems));
+  SceneError e(std::move(problems));
+  e.output_dir = output_dir;
+  throw e;
 }
 
 Scene load_scene(const std::filesystem::path& path) {

@@ -26,6 +26,9 @@ class SceneError : public InputError {
  public:
   explicit SceneError(std::vector<std::string> problems);
   const std::vector<std::string>& problems() const { return problems_; }
+  // The scene's output folder (output.dir, or output/<name>) when its problems are elsewhere: the folder's own
+  // problems (output_dir_problems()) can then be said with them, all at once.
+  std::optional<std::filesystem::path> output_dir;
 
  private:
   std::vector<std::string> problems_;

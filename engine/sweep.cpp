@@ -473,7 +473,7 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   SweepDispatch* dispatch = options.dispatch;
   if (!dispatch) dispatch = (own_dispatch = thread_dispatch(options.jobs)).get();
   std::ifstream in(scene_file);
-  const Scene base_scene = load_scene(scene_file);  // the base must be valid on its own
+  const Scene base_scene = load_scene_for(scene_file, OutputCommand::sweep);  // the base must be valid on its own
   json base = json::parse(in, nullptr, false);
   SweepResult result;
   result.variations = variations;

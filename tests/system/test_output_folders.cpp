@@ -229,6 +229,41 @@ TEST_CASE("output.dir refused for convergence and sweep as for run") {
     for (const auto& c : refusals_of_every_command(command)) check_refused(c);
 }
 
+TEST_CASE("an invalid scene's output.dir problems are said with its other problems, by every command") {
+  // A negative load and an unknown key once hid that output.dir names the user's file: the user fixed two problems
+  // to be told of a third.
+  for (const std::string command : {"validate", "run", "convergence", "sweep"}) {
+    INFO("command: " << command);
+    Scratch s;
+    s.write("notes.txt", "the user's\n");
+    s.write("output/h/mine.txt", "the user's too\n");
+    json scene = base_scene();
+    scene["name"] = "h";
+    scene["load"]["P"] = -5;
+    scene["bogus"] = 1;
+    scene["output"] = {{"dir", "notes.txt"}};
+    s.write("given.json", scene.dump());
+    scene.erase("output");  // the default folder, output/h
+    s.write("default.json", scene.dump());
+    scene["name"] = "h/x";  // no folder can be named: its problems wait for the name's
+    s.write("unnamed.json", scene.dump());
+    const Snapshot before = s.snapshot();
+    const Outcome given = s.fretwear(command_line(command, "given.json"));
+    const Outcome by_default = s.fretwear(command_line(command, "default.json"));
+    const Outcome unnamed = s.fretwear(command_line(command, "unnamed.json"));
+    CHECK(changes(before, s.snapshot()).empty());
+    for (const Outcome* r : {&given, &by_default, &unnamed}) {
+      CHECK_MESSAGE(r->exited(kInvalid), r->describe());
+      CHECK_MESSAGE(r->err.find("load.P: -5 is not allowed") != std::string::npos, r->describe());
+      CHECK_MESSAGE(r->err.find("bogus: unknown key") != std::string::npos, r->describe());
+    }
+    CHECK_MESSAGE(given.err.find("notes.txt\" is an existing file") != std::string::npos,
+                  given.describe());
+    CHECK_MESSAGE(by_default.err.find("output/h\" holds files fretwear did not write") != std::string::npos, by_default.describe());
+    CHECK_MESSAGE(unnamed.err.find("output.dir") == std::string::npos, unnamed.describe());
+  }
+}
+
 TEST_CASE("output.dir accepted: a missing folder, an empty one, one fretwear made") {
   struct Accepted {
     FolderCase c;

@@ -151,8 +151,18 @@ std::optional<json> read_checkpoint(const std::filesystem::path& path, const Sce
   std::ifstream in(path, std::ios::binary);
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
   json j = json::from_cbor(bytes, true, false);
+  // A checkpoint is written whole and renamed into place; one cut short (copied, or its disk full) is recognised by its
+  // format key when that is in the part left, and a run without --resume then overwrites it. Otherwise the file is
+  // not known for fretwear's, and a run without --resume refuses it too (checkpoint_problems()).
   if (j.is_discarded() || !j.is_object() || j.value("format", "") != "fretwear-checkpoint")
-    throw InputError(fmt::format("{}: not a fretwear checkpoint; delete it, or run without --resume", path.string()));
+    throw InputError(is_checkpoint_file(path)
+                         ? fmt::format("{}: a fretwear checkpoint that is damaged or cut short ({} bytes that do not "
+                                       "read as one); delete it, or run without --resume, which starts afresh and "
+                                       "overwrites it",
+                                       path.string(), bytes.size())
+                         : fmt::format("{}: not a fretwear checkpoint, or one cut short before its format; move it "
+                                       "away (a run without --resume refuses it as well, as a file it did not write)",
+                                       path.string()));
   if (j.value("format_version", 0) != kCheckpointFormat || j.value("fretwear", "") != std::string(kVersion))
     throw InputError(fmt::format("{}: written by fretwear {} (checkpoint format {}); this is fretwear {} (format {}): "
                                  "it cannot be resumed. Delete it, or run without --resume",

@@ -345,6 +345,17 @@ TEST_CASE("--resume refuses another scene's checkpoint, and without one runs fro
   CHECK(other.all().find("belongs to another scene") != std::string::npos);
   CHECK(read_file(s.work / "out" / "resume" / "summary.json") == kept);  // nothing written
   CHECK(fs::exists(checkpoint));
+  // One cut short (a copy interrupted, a disk full) is said to be fretwear's and damaged, and the way out it gives,
+  // a run without --resume, starts afresh over it.
+  const std::string whole = read_file(checkpoint);
+  write_file(checkpoint, whole.substr(0, whole.size() - 10));
+  const Outcome cut = s.fretwear({"run", "--resume", "s.json"});
+  CHECK_MESSAGE(cut.exited(kInvalid), cut.describe());
+  CHECK_MESSAGE(cut.all().find("a fretwear checkpoint that is damaged or cut short") != std::string::npos,
+                cut.describe());
+  CHECK_MESSAGE(cut.all().find("or run without --resume, which starts afresh") != std::string::npos, cut.describe());
+  const Outcome afresh = s.fretwear({"run", "s.json", "-q"});
+  CHECK_MESSAGE(afresh.exited(kDone), afresh.describe());
   // A file that is not a checkpoint is refused too.
   write_file(checkpoint, "not a checkpoint");
   const Outcome foreign = s.fretwear({"run", "--resume", "s.json"});

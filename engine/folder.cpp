@@ -212,6 +212,12 @@ void walk_foreign(const fs::path& folder, const std::string& rel, const Marker& 
     if (top && name == kOutputMarker) continue;
     if (top && std::find(carried.begin(), carried.end(), name) != carried.end()) continue;
     const fs::path p = folder / name;
+    // fretwear writes no links: one under a name it wrote is the user's, whatever it leads to (a file of the same
+    // bytes passes the checksum), and replacing the folder would remove it.
+    if (fs::is_symlink(fs::symlink_status(p, ec))) {
+      found.push_back(shown + rel + name + " (a link)");
+      continue;
+    }
     const bool is_folder = fs::is_directory(fs::symlink_status(p, ec)), marked = is_folder && has_marker(p);
     const std::string path = rel + name + (is_folder ? "/" : "");
     bool own = m.listed ? m.entries.count(path) > 0 : written_by_name(rel, name, is_folder, marked);

@@ -694,6 +694,16 @@ TEST_CASE("output.dir refused when fretwear's folder holds entries it did not wr
          return Setup{};
        },
        "run", "summary.json (changed since fretwear wrote it)"},
+      {"a file fretwear wrote, replaced by a link to a copy of it (the same bytes, the same checksum)",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         const fs::path summary = s.work / "output" / "h" / "summary.json";
+         fs::copy_file(summary, s.work / "kept.json");
+         fs::remove(summary);
+         fs::create_symlink("../../kept.json", summary);
+         return Setup{};
+       },
+       "run", "summary.json (a link)"},
       {"a run folder a convergence study made, a file of the user's added",
        [](const Scratch& s) {
          s.write("s.json", scene_text(Setup{}));

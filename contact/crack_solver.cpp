@@ -175,6 +175,8 @@ class FaceContact {
   bool settle_again(int max_passes);
   // A cycle's least violating set and its solution, if its violation is below kCycleTolerance of the load.
   bool keep_cycle_best(double load);
+  // The sliding density of the least violating set of the cycles met so far (empty if none).
+  Eigen::VectorXd cycle_best_slide() const { return cycle_best_ ? cycle_best_->phi.tail(N_) : Eigen::VectorXd(); }
 
   std::vector<int> state;   // 0 open, 1 stick, ±2 slip with sign(h) = ±1
   Eigen::VectorXd phi;      // (φ₁, φ₂) at the nodes (Pa)
@@ -421,11 +423,16 @@ CrackFaces CrackSolver::from_loads(double l, std::span<const double> normal, std
     // nearly satisfied set is kept, and only where there is none do the passes start from the complementarity set
     // again (settle_again).
     bool settled = c.settle(options_.max_contact_iterations);
+    // Where the passes cycle, their least violating set is kept aside: the solution they came near, which a settled
+    // restart is compared with (CrackSif::K_II_nearly).
+    const Eigen::VectorXd nearly = c.cycle_best_slide();
+    const bool restarted = !settled && crack_.face_friction > 0.0 && nearly.size() == N;
     if (!settled && c.complementary_set())
       settled = c.settle(std::max(1, options_.max_contact_iterations - c.passes));
     if (!settled) settled = c.keep_cycle_best(load);
     if (!settled) settled = c.settle_again(std::max(1, options_.max_contact_iterations - c.passes));
     r.contact_iterations = c.passes;
+    if (settled && restarted) r.K_II_nearly = scale * L.dot(nearly);
     if (!settled)
       throw ConvergenceError(fmt::format(
           "crack face contact: the open/stick/slip set {}{}, its least violation {:.3g} Pa, {:.2g} of the largest "

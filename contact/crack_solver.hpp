@@ -127,6 +127,12 @@ struct CrackSif {
   bool closed = false;     // the faces touch at the tip: K_I = 0
   double closed_fraction = 0.0;  // share of the collocation points where the faces touch
   int contact_iterations = 0;    // active-set passes (0: the open crack did not overlap)
+  // With face friction, where the passes from the open crack's overlaps cycled and the contact then settled from
+  // another start (the complementarity problem's solution, a cycle's set): K_II of the least violating set of those
+  // cycles, the solution the passes came near; NaN otherwise. A frictional contact solved for one state alone can
+  // have more than one solution, and the other start may land on another than the one the passes approach (the
+  // one finer and coarser grids settle on directly): K_II then differs from this.
+  double K_II_nearly = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The state of the faces at each collocation point, for inspection and tests.

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "contact/closed_form.hpp"
 #include "contact/window.hpp"
@@ -285,6 +286,38 @@ void crack_quadrature(const RunResult& r, std::vector<Warning>& out) {
                              c.opens_or_closes ? ", and a length opens or closes between the two" : "")});
 }
 
+// A length whose faces' frictional contact settled, from another start, on a solution far from the one the passes
+// came near (CrackSif::K_II_nearly), by more than kCrackQuadratureShare of the state's largest |K|. Measured on
+// examples/inclined_crack.json at 22.5°, the bottom of the cycle, l = 20 µm: the passes settle directly at K_II =
+// −61 and −58 kPa√m on 512 and 2048 cells; on 1024 and 4096 cells they cycle near −61 and −59, and the complementarity
+// problem's solution settles at −922 and −951 kPa√m. At 45° the restarts land where the passes came (equal K_II).
+void crack_branch(const RunResult& r, std::vector<Warning>& out) {
+  std::vector<std::string> where;
+  std::size_t n = 0;
+  for (const SifSet& set : r.sifs) {
+    double largest = 0.0;
+    for (const CrackSif& s : set.result.sifs) {
+      largest = std::max({largest, std::abs(s.K_I), std::abs(s.K_II)});
+      if (std::isfinite(s.K_II_nearly)) largest = std::max(largest, std::abs(s.K_II_nearly));
+    }
+    for (const CrackSif& s : set.result.sifs)
+      if (std::isfinite(s.K_II_nearly) && std::abs(s.K_II - s.K_II_nearly) > kCrackQuadratureShare * largest &&
+          n++ < 3)
+        where.push_back(fmt::format("l = {:.4g} m, {}: K_II = {:.4g} Pa√m, where the passes came near {:.4g}", s.l,
+                                    set.phase, s.K_II, s.K_II_nearly));
+  }
+  if (where.empty()) return;
+  out.push_back({"crack_contact_branch",
+                 fmt::format("the crack faces' contact with friction settled far from where its passes came, at "
+                             "{}{}: the passes from the open crack's overlaps cycled near one state of the faces, and "
+                             "another start settled on another, which is reported. With friction, a contact solved for "
+                             "one state alone (not along the load's path) can have more than one solution, so K_II "
+                             "there may jump between grids and quadratures; compare other grid.cells and "
+                             "effects.crack.quadrature",
+                             fmt::join(where, "; "), n > where.size() ? fmt::format(" (and {} more)", n - where.size())
+                                                                      : "")});
+}
+
 void crack_placement(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
   const Grid& g = r.normal.grid;
   const double width = g.x_max - g.x_min;
@@ -489,7 +522,8 @@ std::vector<Warning> result_warnings(const Scene& scene, const RunResult& result
     history_unsteady(result, out);
     mindlin_missed(scene, result, out);
   }
-  if (scene.crack && !result.sifs.empty()) crack_placement(scene, result, out), crack_quadrature(result, out);
+  if (scene.crack && !result.sifs.empty())
+    crack_placement(scene, result, out), crack_quadrature(result, out), crack_branch(result, out);
   if (result.wear && !result.wear->records.empty()) {
     wear_overshoot(scene, result, out);
     worn_zigzag(scene, result, out);

@@ -95,12 +95,12 @@ double RoundedPunch::peak_x() const {
   std::sort(xs.begin(), xs.end());
   xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
   std::size_t best = 0;
+  double p_best = pressure(xs[0]);
   for (std::size_t i = 1; i < xs.size(); ++i)
-    if (pressure(xs[i]) > pressure(xs[best])) best = i;
+    if (const double p = pressure(xs[i]); p > p_best) p_best = p, best = i;
   // Zoomed in on: 200 samples between the best one's neighbours, the best of them and its neighbours again, until
-  // the bracket is a few ulps of x wide.
+  // the bracket is a few ulps of x wide (Brent's search stops at √ε of x, wider than a sharp corner's spike top).
   double lo = xs[best > 0 ? best - 1 : 0], hi = xs[std::min(best + 1, xs.size() - 1)], x_best = xs[best];
-  double p_best = pressure(x_best);
   constexpr int kSamples = 200;
   while (hi - lo > 8.0 * std::numeric_limits<double>::epsilon() * b) {
     const double step = (hi - lo) / kSamples;

@@ -276,8 +276,8 @@ DriveState resume_wear(const json& j, const Scene& scene, std::vector<double>& w
   // The state w may hold more than one value a cell (each body's wear in its own frame); a record's fields, one.
   const std::size_t cells = std::size_t(scene.cells);
   auto per_cell = [cells](const std::vector<double>& v) { return v.size() == cells; };
-  bool fits = w.size() == n && std::all_of(w.begin(), w.end(), [](double wi) { return std::isfinite(wi); }) && std::isfinite(at.N) && at.N >= 0.0 && std::isfinite(at.dt) && at.dt > 0.0 &&
-              at.steps >= 0;
+  bool fits = w.size() == n && std::all_of(w.begin(), w.end(), [](double wi) { return std::isfinite(wi); }) &&
+              std::isfinite(at.N) && at.N >= 0.0 && std::isfinite(at.dt) && at.dt > 0.0 && at.steps >= 0;
   for (const WearRecord& r : records)
     fits = fits && per_cell(r.w) && per_cell(r.p) && per_cell(r.s) && (r.q.empty() || per_cell(r.q)) &&
            r.cycles >= 0.0 && r.cycles <= at.N;

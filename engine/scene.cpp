@@ -742,8 +742,10 @@ struct Given {
 };
 
 // name, plane.
-void parse_naming(Reader& top, const std::string& default_name, Scene& s) {
+// Returns whether the name was read without a problem (the default output folder, output/<name>, is then known).
+bool parse_naming(Reader& top, const std::string& default_name, Scene& s) {
   constexpr std::size_t kMaxName = 128;  // valid_name's limit
+  const std::size_t n_problems_before = top.problems().size();
   s.name = top.string("name", default_name, "a name of at most 128 letters, digits, '_', '-' and '.'")
                .value_or("scene");
   if (!valid_name(s.name))
@@ -753,6 +755,7 @@ void parse_naming(Reader& top, const std::string& default_name, Scene& s) {
                                           s.name, s.name.size(), kMaxName)
                             : fmt::format("\"{}\" cannot name a folder; use letters, digits, '_', '-' and '.'",
                                           s.name));
+  const bool name_read = top.problems().size() == n_problems_before;
 
   if (auto plane = top.string("plane", "strain", "\"strain\" or \"stress\"")) {
     try {
@@ -761,6 +764,7 @@ void parse_naming(Reader& top, const std::string& default_name, Scene& s) {
       top.problem("plane", fmt::format("\"{}\" is not a plane state; use \"strain\" or \"stress\"", *plane));
     }
   }
+  return name_read;
 }
 
 // materials: "both", or "pad" and "specimen".
@@ -1545,7 +1549,7 @@ Scene parse_scene(const json& j, const std::string& default_name, const std::fil
   if (!j.is_object()) throw SceneError({fmt::format("(top): the scene is {}; give a JSON object", type_name(j))});
   Reader top(j, "", problems);
   Given given;
-  parse_naming(top, default_name, s);
+  bool folder_read = parse_naming(top, default_name, s);  // the output folder is known: name, output read well
   const std::size_t n_problems_before_materials = problems.size();
   parse_materials(top, s, problems);
   given.materials_ok = problems.size() == n_problems_before_materials;
@@ -1562,14 +1566,13 @@ Scene parse_scene(const json& j, const std::string& default_name, const std::fil
   parse_load(top, s, given, problems);
   parse_grid(top, s, given, problems);
   parse_effects(top, s, given, problems);
+  const std::size_t n_problems_before_output = problems.size();
   parse_output(top, s, problems);
+  folder_read = folder_read && problems.size() == n_problems_before_output;
   top.finish();
   check_needs(s, given, problems);
   check_window(s, given, problems);
   if (!problems.empty()) {
-    const bool folder_read = std::none_of(problems.begin(), problems.end(), [](const std::string& p) {
-      return p.starts_with("output") || p.starts_with("name:");
-    });
     SceneError e(std::move(problems));
     if (folder_read) e.output_dir = s.output_dir;
     throw e;

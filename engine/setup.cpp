@@ -125,14 +125,17 @@ Model align_to_stick(const Scene& scene, Model m) {
   const auto [s0, s1] = m.profile.support();
   const auto inside = [&m](double s) { return std::isfinite(s) && s > m.grid.x_min && s < m.grid.x_max; };
   if (inside(s0) || inside(s1)) return m;
-  const StandIns stand_ins = window_stand_ins(scene);
   constexpr double kAlignBeta = 1e-3;
   const double beta = std::abs(m.pair.beta());
   if (beta > kAlignBeta) return m;
   const bool dissimilar = beta > 1e-12 && scene.blocks.empty() && scene.history.empty();
-  const InitialStick st = dissimilar ? initial_stick_zones(stand_ins.scenes.front(),
-                                                           model_on(stand_ins.scenes.front(), m.grid, m.window))
-                                     : initial_stick_zones(scene, m);
+  InitialStick st;
+  if (dissimilar) {
+    const StandIns stand_ins = window_stand_ins(scene);  // the similar pair of the same compliance first
+    st = initial_stick_zones(stand_ins.scenes.front(), model_on(stand_ins.scenes.front(), m.grid, m.window));
+  } else {
+    st = initial_stick_zones(scene, m);
+  }
   if (st.zones.empty()) return m;
   const double l = st.zones.front().left.x, r = st.zones.front().right.x;
   const double h = (r - l) / std::max(1.0, std::round((r - l) / m.grid.h()));

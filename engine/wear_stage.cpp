@@ -639,11 +639,11 @@ DriveState WearRun::drive(Stepper& stepper, System system, double dN, Save save,
       throw InputError(fmt::format("checkpoint: damaged: it stands at cycle {:.6g} before record {} of {}, which this "
                                    "scene's wear run ({:.6g} to {:.6g} cycles) never does",
                                    s.N, s.next, times_.size(), times_.front(), times_.back()));
-    if (blocks_ && j.at("blocks").at("earlier_records").get<std::size_t>() > stage_.records.size())
+    const std::size_t earlier = blocks_ ? j.at("blocks").at("earlier_records").get<std::size_t>() : 0;
+    if (earlier > stage_.records.size())
       throw InputError("checkpoint: damaged: it counts more earlier records than it holds");
     if (blocks_)  // the checkpoint holds every record; this block's follow the earlier blocks'
-      stage_.records.erase(stage_.records.begin(),
-                           stage_.records.begin() + std::ptrdiff_t(j.at("blocks").at("earlier_records").get<std::size_t>()));
+      stage_.records.erase(stage_.records.begin(), stage_.records.begin() + std::ptrdiff_t(earlier));
     else if (stage_.records.size() != s.next)  // one record at each record time reached, the start's included
       throw InputError(fmt::format("checkpoint: damaged: it holds {} records where it has reached {}",
                                    stage_.records.size(), s.next));

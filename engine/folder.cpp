@@ -524,7 +524,8 @@ std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path&
     return problems;
   }
   if (!link_problems(dir, "output.dir", problems)) return problems;
-  const fs::path scene_dir = scene_file.empty() ? fs::path() : resolved(scene_file).parent_path();
+  const bool no_file = scene_file.empty() || scene_file == kStdinScene;  // nothing of the scene's own to keep safe
+  const fs::path scene_dir = no_file ? fs::path() : resolved(scene_file).parent_path();
   const fs::path target = resolved(dir);
   check_target(target, "output.dir", scene_dir, problems, dir, command == OutputCommand::run, carried_by(command));
   if (command != OutputCommand::run && problems.empty()) {

@@ -483,7 +483,7 @@ int validate(const std::string& path, bool quiet, bool verbose) {
   const Preflight checked = preflight(scene, path, OutputCommand::run);
   print_warnings(checked.warnings);
   if (!quiet) {
-    std::cout << path << ": valid scene \"" << scene.name << "\"";
+    std::cout << (path == kStdinScene ? "standard input" : path) << ": valid scene \"" << scene.name << "\"";
     if (checked.wear_seconds > 60.0) std::cout << "; its wear stage will take about " << duration_words(checked.wear_seconds);
     if (checked.stress_seconds > 60.0)
       std::cout << "; its stress maps will take about " << duration_words(checked.stress_seconds);
@@ -566,7 +566,7 @@ int main(int argc, char** argv) {
 
   std::string scene_path;
   auto* run_cmd = app.add_subcommand("run", "run a scene and write its results into output.dir");
-  run_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
+  run_cmd->add_option("scene", scene_path, "scene file (JSON), or - for standard input")->required();
   bool resume = false;
   double checkpoint_every = 60.0;
   run_cmd->add_flag("--resume", resume,
@@ -576,7 +576,7 @@ int main(int argc, char** argv) {
                       "seconds between wear checkpoints between records (default 60; 0: after every step)")
       ->check(CLI::Range(0.0, 1e9));
   auto* validate_cmd = app.add_subcommand("validate", "check a scene and report every problem; writes nothing");
-  validate_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
+  validate_cmd->add_option("scene", scene_path, "scene file (JSON), or - for standard input")->required();
   std::string effect;
   auto* defaults_cmd =
       app.add_subcommand("defaults", "print a scene with every effect and every default filled in");
@@ -585,7 +585,7 @@ int main(int argc, char** argv) {
                            "crack or life");
   int from = 128, to = 65536;
   auto* conv_cmd = app.add_subcommand("convergence", "solve the scene's normal problem on grids of doubling size");
-  conv_cmd->add_option("scene", scene_path, "scene file (JSON)")->required();
+  conv_cmd->add_option("scene", scene_path, "scene file (JSON), or - for standard input")->required();
   conv_cmd->add_option("--from", from, "coarsest grid (cells)")->check(CLI::Range(16, 1 << 20));
   conv_cmd->add_option("--to", to, "finest grid (cells)")->check(CLI::Range(16, 1 << 20));
   std::vector<std::string> vary;

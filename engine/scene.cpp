@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -1817,10 +1818,23 @@ Scene parse_scene_text(std::string_view text, const std::string& default_name, c
 
 Scene load_scene(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
+  if (path == kStdinScene) {  // read once, to its end: a pipe cannot be read again, so it is taken whole or refused
+    std::string text(kMaxSceneBytes + 1, '\0');
+    std::cin.read(text.data(), std::streamsize(text.size()));
+    if (std::cin.bad()) throw SceneError({"standard input: cannot be read"});
+    text.resize(std::size_t(std::cin.gcount()));
+    if (text.size() > kMaxSceneBytes)
+      throw SceneError({fmt::format("standard input: holds more than {} bytes, the most a scene may be",
+                                    kMaxSceneBytes)});
+    return parse_scene_text(text, "stdin", "standard input", fs::path());
+  }
   std::error_code ec;
   const auto status = fs::status(path, ec);
   if (ec || !fs::exists(status)) throw SceneError({path.string() + ": no such file"});
   if (fs::is_directory(status)) throw SceneError({path.string() + ": is a directory; give a scene file (.json)"});
+  if (!fs::is_regular_file(status))  // a pipe or a device: its size is unknown and its reading may never end
+    throw SceneError({path.string() + ": is not a regular file (a pipe or a device); give a scene file, or - to read "
+                                      "the scene from standard input"});
   const auto size = fs::file_size(path, ec);
   if (ec) throw SceneError({path.string() + ": cannot be read (" + ec.message() + ")"});
   if (size > kMaxSceneBytes)

@@ -230,7 +230,12 @@ Scene parse_scene(const nlohmann::json& j, const std::string& default_name = "sc
 // twice lets parse_scene run as well; the others stop the reading. Throws nothing but SceneError (and bad_alloc).
 Scene parse_scene_text(std::string_view text, const std::string& default_name = "scene",
                        const std::string& source = "the scene", const std::filesystem::path& scene_dir = {});
-// Reads a scene file and parses its text, a table's relative file read from the scene file's folder; file problems (missing, a directory, too large) are SceneErrors too.
+// "-" for a scene path: the scene is read from standard input.
+inline constexpr const char* kStdinScene = "-";
+// Reads a scene file and parses its text, a table's relative file read from the scene file's folder; file problems
+// (missing, a directory, not a regular file, too large) are SceneErrors too. The path kStdinScene reads standard
+// input to its end instead: the scene is named "stdin" unless it names itself, and a table's relative file is read
+// from the working folder.
 Scene load_scene(const std::filesystem::path& path);
 // The default scene, as `fretwear defaults [--effect NAME]` prints it: PHYSICS.md's Hertz contact with every effect
 // and every key written out (required ones at that case's values), or with one effect (and the load cycle it

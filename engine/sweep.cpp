@@ -472,6 +472,10 @@ SweepResult run_sweep(const fs::path& scene_file, const std::vector<Variation>& 
   std::unique_ptr<SweepDispatch> own_dispatch;
   SweepDispatch* dispatch = options.dispatch;
   if (!dispatch) dispatch = (own_dispatch = thread_dispatch(options.jobs)).get();
+  // Every rank reads the scene, and mpirun hands standard input to rank 0 alone.
+  if (scene_file == kStdinScene)
+    throw SceneError({"-: a sweep reads its scene from a file (every rank of mpirun or srun reads it, and only one "
+                      "is given standard input); give the scene's file"});
   std::ifstream in(scene_file);
   const Scene base_scene = load_scene_for(scene_file, OutputCommand::sweep);  // the base must be valid on its own
   json base = json::parse(in, nullptr, false);

@@ -90,6 +90,9 @@ SceneArgument scene_argument(py::handle arg) {
     if (py::isinstance<py::str>(arg) || py::isinstance<py::bytes>(arg) || py::isinstance(arg, os.attr("PathLike"))) {
       const fs::path path = path_argument(arg);
       if (holds_nul(path.native())) raise_scene_error({fmt::format("{}: {}", quoted(path), kHoldsNul)});
+      if (path == kStdinScene)  // the command line's word for standard input, which a Python caller reads itself
+        raise_scene_error({"\"-\": is standard input on the command line; here give the scene as a dict (e.g. "
+                           "json.load(sys.stdin)), or the path of a scene file (./- for a file named -)"});
       return {load_scene(path), path};
     }
     if (!py::isinstance<py::dict>(arg))

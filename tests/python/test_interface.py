@@ -262,6 +262,18 @@ def test_a_nul_byte_in_a_path_is_refused_before_anything_is_computed(in_empty_fo
     assert files_under(in_empty_folder) == ["s"]
 
 
+def test_the_path_dash_is_not_standard_input_here_and_a_file_named_dash_is_read(in_empty_folder):
+    # "-" is the command line's word for standard input (docs/SCENES.md); the module never reads the caller's stdin.
+    with pytest.raises(fretwear.SceneError) as caught:
+        fretwear.run("-")
+    (problem,) = caught.value.problems
+    assert problem.startswith('"-": is standard input on the command line; here give the scene as a dict')
+    assert fretwear.validate("-") == [problem]
+    (in_empty_folder / "-").write_text(json.dumps(example("hertz_normal", **{"grid.cells": 128})))
+    assert fretwear.validate("./-") == []
+    assert files_under(in_empty_folder) == ["-"]
+
+
 def test_a_folder_that_cannot_be_written_after_all_is_one_problem_said_once(in_empty_folder):
     # A file of the caller's where the results are staged (docs/SCENES.md, "Output folders") is found only when they
     # are written: its problem is raised as it is, once.

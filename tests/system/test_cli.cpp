@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
 
 #include "support.hpp"
 #include "system/program.hpp"
@@ -101,6 +102,49 @@ TEST_CASE("file problems exit with status 2 and write nothing") {
   }
   fs::remove(s.work / "adir.json");
   CHECK(!fs::exists(s.work / "output"));
+}
+
+// `fretwear ARGS < file`, the file given as standard input by a shell (the words reach the program as they are).
+Outcome with_stdin(const Scratch& s, const std::vector<std::string>& args, const std::string& file) {
+  fretwear::test::Command command{{"/bin/sh", "-c", "f=$1; shift; exec \"$@\" < \"$f\"", "sh", file, FRETWEAR_EXE}};
+  command.words.insert(command.words.end(), args.begin(), args.end());
+  return fretwear::test::run_program(command, s.work);
+}
+
+TEST_CASE("the scene - is read from standard input, and a pipe or a device given by its path is refused") {
+  Scratch s;
+  s.write("s.json", kGood);
+  const Outcome valid = with_stdin(s, {"validate", "-"}, "s.json");
+  CHECK_MESSAGE(valid.exited(kDone), valid.describe());
+  CHECK(valid.out.find("standard input: valid scene \"cli\"") != std::string::npos);
+  const Outcome ran = with_stdin(s, {"run", "-", "-q"}, "s.json");
+  CHECK_MESSAGE(ran.exited(kDone), ran.describe());
+  CHECK(fs::exists(s.work / "output" / "cli" / "summary.json"));
+  // Without a name of its own the scene is "stdin", and its results go to output/stdin.
+  json unnamed = json::parse(kGood);
+  unnamed.erase("name");
+  s.write("unnamed.json", unnamed.dump());
+  const Outcome named = with_stdin(s, {"run", "-", "-q"}, "unnamed.json");
+  CHECK_MESSAGE(named.exited(kDone), named.describe());
+  CHECK(fs::exists(s.work / "output" / "stdin" / "summary.json"));
+  // Bad text from standard input is named so, and nothing is written.
+  s.write("cut.json", "{\"name\": ");
+  const Snapshot before = fretwear::test::snapshot(s.work);
+  const Outcome cut = with_stdin(s, {"run", "-"}, "cut.json");
+  CHECK_MESSAGE(cut.exited(kInvalid), cut.describe());
+  CHECK(cut.err.find("standard input: not valid JSON") != std::string::npos);
+  // A sweep's ranks each read the scene, which standard input cannot give them.
+  const Outcome sweep = with_stdin(s, {"sweep", "-", "--vary", "friction=0.3,0.4"}, "s.json");
+  CHECK_MESSAGE(sweep.exited(kInvalid), sweep.describe());
+  CHECK(sweep.err.find("give the scene's file") != std::string::npos);
+  // A named pipe is refused at once, without waiting for a writer, and told how to give a scene on standard input.
+  REQUIRE(::mkfifo((s.work / "pipe.json").c_str(), 0600) == 0);
+  const Outcome pipe = s.fretwear({"validate", "pipe.json"}, {}, 20.0);
+  CHECK_MESSAGE(pipe.exited(kInvalid), pipe.describe());
+  CHECK(pipe.err.find("is not a regular file (a pipe or a device); give a scene file, or - to read") !=
+        std::string::npos);
+  fs::remove(s.work / "pipe.json");
+  CHECK(changes(before, fretwear::test::snapshot(s.work)).empty());
 }
 
 TEST_CASE("an unwritable output folder is reported before any work, with status 2") {

@@ -84,20 +84,39 @@ std::string quoted(const fs::path& path) {
   return json(path.string()).dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-SceneArgument scene_argument(py::handle arg) {
+// The problems of an invalid scene read from scene_file ("" for a dict), and after them those of the folder `output`
+// names: `output` is an argument of its own here, so its folder is known whatever the scene's keys say, and every
+// problem is raised at once, as the command line lists them.
+[[noreturn]] void raise_with_folder(std::vector<std::string> problems, const fs::path& scene_file,
+                                    const std::optional<fs::path>& output) {
+  if (output) {
+    Scene folder;  // output_dir_problems() reads the folder alone
+    folder.output_dir = *output;
+    const std::vector<std::string> more = output_dir_problems(folder, scene_file, OutputCommand::run);
+    problems.insert(problems.end(), more.begin(), more.end());
+  }
+  raise_scene_error(problems);
+}
+
+// The scene argument; when it is invalid, a SceneError with its problems and those of the folder `output` names.
+SceneArgument scene_argument(py::handle arg, const std::optional<fs::path>& output) {
   const py::module_ os = py::module_::import("os");
+  fs::path scene_file;
   try {
     if (py::isinstance<py::str>(arg) || py::isinstance<py::bytes>(arg) || py::isinstance(arg, os.attr("PathLike"))) {
       const fs::path path = path_argument(arg);
-      if (holds_nul(path.native())) raise_scene_error({fmt::format("{}: {}", quoted(path), kHoldsNul)});
+      if (holds_nul(path.native())) raise_with_folder({fmt::format("{}: {}", quoted(path), kHoldsNul)}, {}, output);
+      scene_file = path;
       if (path == kStdinScene)  // the command line's word for standard input, which a Python caller reads itself
-        raise_scene_error({"\"-\": is standard input on the command line; here give the scene as a dict (e.g. "
-                           "json.load(sys.stdin)), or the path of a scene file (./- for a file named -)"});
+        raise_with_folder({"\"-\": is standard input on the command line; here give the scene as a dict (e.g. "
+                           "json.load(sys.stdin)), or the path of a scene file (./- for a file named -)"},
+                          {}, output);
       return {load_scene(path), path};
     }
     if (!py::isinstance<py::dict>(arg))
-      raise_scene_error({fmt::format("(top): the scene is a {}; give a dict (or the path of a scene file)",
-                                     std::string(py::str(py::type::handle_of(arg).attr("__name__"))))});
+      raise_with_folder({fmt::format("(top): the scene is a {}; give a dict (or the path of a scene file)",
+                                     std::string(py::str(py::type::handle_of(arg).attr("__name__"))))},
+                        {}, output);
     std::vector<std::string> problems, nulled;
     const json j = to_json(arg, problems, nulled);
     if (problems.empty()) return {parse_scene(j), {}};
@@ -114,9 +133,9 @@ SceneArgument scene_argument(py::handle arg) {
         if (!covered) problems.push_back(p);
       }
     }
-    raise_scene_error(problems);
+    raise_with_folder(problems, {}, output);
   } catch (const SceneError& e) {
-    raise_scene_error(e.problems());
+    raise_with_folder(e.problems(), scene_file, output);
   }
 }
 
@@ -244,9 +263,9 @@ Result run(py::handle scene_arg, py::handle output_arg, py::object progress) {
     throw py::type_error(fmt::format("progress must be a callable (stage, done, total, unit) or None, not {}",
                                      py::str(py::type::of(progress)).cast<std::string>()));
   const RunInProgress counted;
-  SceneArgument arg = scene_argument(scene_arg);
-  Scene& scene = arg.scene;
   const std::optional<fs::path> output = output_argument(output_arg);
+  SceneArgument arg = scene_argument(scene_arg, output);
+  Scene& scene = arg.scene;
   if (output) scene.output_dir = *output;
   SignalCheck check(progress);
   Preflight checked;
@@ -386,8 +405,8 @@ void set_state_by(py::class_<T>& cls, F&& set) {
 py::list validate(py::handle scene_arg, py::handle output_arg) {
   std::vector<std::string> problems;
   try {
-    SceneArgument arg = scene_argument(scene_arg);
     const std::optional<fs::path> output = output_argument(output_arg);
+    SceneArgument arg = scene_argument(scene_arg, output);
     if (output) arg.scene.output_dir = *output;
     Preflight checked;
     problems = problems_before_solving(arg.scene, arg.scene_file, output.has_value(), &checked);

@@ -185,6 +185,28 @@ def test_output_follows_the_command_lines_folder_rules(in_empty_folder):
     assert files_under(in_empty_folder) == ["mine", "mine/thesis.tex"]
 
 
+def test_an_invalid_scene_and_its_output_folder_are_listed_together_as_on_the_command_line(in_empty_folder):
+    (in_empty_folder / "mine").mkdir()
+    (in_empty_folder / "mine" / "thesis.tex").write_text("keep me")
+    scene = example("hertz_normal")
+    scene["profile"]["R"] = -1.0
+    with pytest.raises(fretwear.SceneError) as caught:
+        fretwear.run(scene, output="mine")
+    problems = caught.value.problems
+    assert len(problems) == 2 and problems[0].startswith("profile.R:"), problems
+    assert problems[1].startswith('output.dir: the folder "') and '/mine" holds files' in problems[1], problems
+    assert fretwear.validate(scene, output="mine") == problems
+    # The command line, given the same folder in the scene, lists the same two (its dict read from a file).
+    scene["output"] = {"dir": "mine"}
+    (in_empty_folder / "s.json").write_text(json.dumps(scene))
+    status, _, err = cli("validate", "s.json")
+    assert status == 2 and [line[2:] for line in err.splitlines() if line.startswith("  ")] == problems
+    # A scene file that cannot be read, and a scene that is not a dict, likewise.
+    assert fretwear.validate("missing.json", output="mine") == ["missing.json: no such file", problems[1]]
+    assert fretwear.validate(5, output="mine")[1:] == [problems[1]]
+    assert files_under(in_empty_folder) == ["mine", "mine/thesis.tex", "s.json"]
+
+
 def test_arrays_have_the_grids_length_and_si_units():
     result = fretwear.run(example("hertz_cycle", **{"grid.cells": 512}))
     cells = result.summary["grid"]["cells"]

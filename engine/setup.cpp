@@ -91,8 +91,17 @@ WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowCh
                          "contact; give grid.window");
       const double lo = centre - 2.5 * half, hi = centre + 2.5 * half;
       const Model trial = model_on(s, align_to_support(profile, lo, hi, kTrialCells), {lo, hi, "trial", 0.0});
-      const NormalResult normal = solve_normal(s, trial);
-      const WearAsymptote a = wear_asymptote(s, trial, normal);
+      NormalResult normal;
+      WearAsymptote a;
+      try {
+        normal = solve_normal(s, trial);
+        a = wear_asymptote(s, trial, normal);
+      } catch (const ConvergenceError& e) {  // on a grid the user never asked for: say which, and how to skip it
+        throw ConvergenceError(fmt::format("grid.window: sizing the default window for the worn contact on a trial "
+                                           "grid of {} cells over [{:.6g}, {:.6g}] m: {}; give grid.window to skip "
+                                           "this trial",
+                                           kTrialCells, lo, hi, e.what()));
+      }
       if (a.worn_area <= 0.0) break;
       if (a.extent.first <= trial.grid.x_min + trial.grid.h() || a.extent.second >= trial.grid.x_max - trial.grid.h())
         continue;

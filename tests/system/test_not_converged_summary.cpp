@@ -138,6 +138,31 @@ TEST_CASE("a normal solve that fails names the normal stage and has no stage's r
   CHECK_FALSE(summary.contains("timings"));
 }
 
+TEST_CASE("a wear scene's trial solve that fails names the trial grid it ran on, and how to skip it") {
+  // A wearing scene without grid.window has its window sized by the asymptote on a trial grid of 1024 cells
+  // (engine/setup.cpp); its solve is the first to fail, on cells the scene never asked for.
+  Scratch s;
+  json scene = wear_scene();
+  scene["grid"]["cells"] = 256;
+  s.write("s.json", scene.dump());
+  const Outcome r = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_NORMAL_MAX_ITERATIONS", "2"}});
+  CHECK_MESSAGE(r.exited(kNotConverged), r.describe());
+  const std::string said = "grid.window: sizing the default window for the worn contact on a trial grid of 1024 cells";
+  CHECK(r.err.find(said) != std::string::npos);
+  CHECK(r.err.find("residual") != std::string::npos);
+  CHECK(r.err.find("; give grid.window to skip this trial") != std::string::npos);
+  const json summary = json::parse(std::ifstream(s.work / "output" / "h" / "summary.json"));
+  CHECK(summary["failed_stage"] == "normal");
+  CHECK(summary["message"].get<std::string>().starts_with(said));
+  // With the window given there is no trial: the scene's own solve fails, on its own 256 cells.
+  scene["grid"]["window"] = {-4e-4, 4e-4};
+  s.write("s.json", scene.dump());
+  const Outcome given = s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_NORMAL_MAX_ITERATIONS", "2"}});
+  CHECK_MESSAGE(given.exited(kNotConverged), given.describe());
+  CHECK(given.err.find("trial") == std::string::npos);
+  CHECK(given.err.find("on 256 cells") != std::string::npos);
+}
+
 namespace {
 
 // A wear run made to fail at the first step boundary after `step` accepted steps (FRETWEAR_NOT_CONVERGED_AT_STEP),

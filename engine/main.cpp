@@ -275,7 +275,12 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
   if (summary.contains("life")) {
     const auto& l = summary["life"];
     auto count = [&v](const nlohmann::json& n) { return n.is_null() ? std::string("never") : fmt::format("{:.4g}", v(n)); };
-    std::string line = fmt::format("  life ({}): total {} cycles", l["fate"].get<std::string>(), count(l["total_cycles"]));
+    // A run out has no total: it lasts beyond the cycles the scene looks at.
+    std::string line = l["total_cycles"].is_null()
+                           ? fmt::format("  life ({}): beyond {:.4g} cycles (effects.life.cycles_max)",
+                                         l["fate"].get<std::string>(), v(l["cycles_max"]))
+                           : fmt::format("  life ({}): total {} cycles", l["fate"].get<std::string>(),
+                                         count(l["total_cycles"]));
     if (l.contains("initiation"))
       line += fmt::format("; initiation after {} cycles at x = {:.4e} m (SWT {:.4g} Pa, {} method)",
                           count(l["initiation"]["cycles"]), v(l["initiation"]["x"]), v(l["initiation"]["swt"]),

@@ -389,6 +389,28 @@ TEST_CASE("run reports each stage that ran, and --verbose adds how it was solved
   for (std::string line; std::getline(err, line);) CHECK_MESSAGE(line.rfind("warning: ", 0) == 0, line);
 }
 
+TEST_CASE("the life line gives a failure's total, and says a run out lasts beyond cycles_max") {
+  Scratch s;
+  const Outcome defaults = s.fretwear({"defaults", "--effect", "life"});
+  REQUIRE_MESSAGE(defaults.exited(kDone), defaults.describe());
+  json scene = json::parse(defaults.out);
+  scene["grid"]["cells"] = 256;
+  s.write("out.json", scene.dump());
+  const Outcome out = s.fretwear({"run", "out.json"});
+  REQUIRE_MESSAGE(out.exited(kDone), out.describe());
+  CHECK(out.out.find("  life (runout): beyond 1e+09 cycles (effects.life.cycles_max); initiation after ") !=
+        std::string::npos);
+  // A bulk stress of 300 MPa starts a crack and grows it to a_final within cycles_max.
+  scene["load"]["bulk_stress"] = {{"amplitude", 3e8}};
+  s.write("fails.json", scene.dump());
+  const Outcome fails = s.fretwear({"run", "fails.json"});
+  REQUIRE_MESSAGE(fails.exited(kDone), fails.describe());
+  const json life = json::parse(read_file(s.work / "output" / "hertz_life" / "summary.json"))["life"];
+  REQUIRE(life["fate"] == "failure");
+  CHECK(fails.out.find(fmt::format("  life (failure): total {:.4g} cycles; initiation after ",
+                                   life["total_cycles"].get<double>())) != std::string::npos);
+}
+
 TEST_CASE("the report says a peak pressure at a singular edge is a grid measure, and a bounded one plainly") {
   // A sharp flat punch's p_max is its corner cell's share of an unbounded pressure (summary: contact.p_max_singular).
   Scratch s;

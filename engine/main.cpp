@@ -304,6 +304,8 @@ void print_report(const Scene& scene, const RunResult& result, const nlohmann::j
 
 int run(const std::string& path, bool quiet, bool verbose, bool resume, double checkpoint_every) {
   const Scene scene = load_scene_for(path, OutputCommand::run);
+  // The scene as `fretwear run --resume` is given it again.
+  const std::string again = path == kStdinScene ? "- (the same scene on standard input)" : path;
   // Tests only: FRETWEAR_STAGE_QUIET_S, how long a stage runs before its parts are shown (s; 2 by default), so that a
   // test sees the lines of stages that take milliseconds.
   const char* quiet_stage = std::getenv("FRETWEAR_STAGE_QUIET_S");
@@ -360,7 +362,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
         }
         std::cerr << fmt::format("fretwear: {}: {} holds {}; this run starts from cycle 0 and replaces it (to "
                                  "continue it instead, stop now and run: fretwear run --resume {})\n",
-                                 scene.name, control.checkpoint.string(), held, path);
+                                 scene.name, control.checkpoint.string(), held, again);
       }
     }
   } else if (resume && !quiet) {
@@ -446,7 +448,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
       std::cerr << fmt::format("fretwear: {}: stopped by signal {} at cycle {:.0f} of {:.0f} (recorded up to cycle "
                                "{:.0f}); results so far in {}/; continue with: fretwear run --resume {}\n",
                                scene.name, int(g_signal), result.wear->cycles_reached, scene.wear->cycles,
-                               result.wear->records.back().cycles, scene.output_dir.string(), path);
+                               result.wear->records.back().cycles, scene.output_dir.string(), again);
       return kExitSignal + int(g_signal);
     }
     if (scene.wear) std::filesystem::remove(control.checkpoint, ec);  // done: the checkpoint has served
@@ -476,7 +478,7 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
                              int(g_signal),
                              checkpoint ? fmt::format(" (the wear stage's checkpoint is kept: fretwear run --resume {} "
                                                       "takes it up)",
-                                                      path)
+                                                      again)
                                         : "");
     return kExitSignal + int(g_signal);
   }

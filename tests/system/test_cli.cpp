@@ -105,10 +105,11 @@ TEST_CASE("file problems exit with status 2 and write nothing") {
 }
 
 // `fretwear ARGS < file`, the file given as standard input by a shell (the words reach the program as they are).
-Outcome with_stdin(const Scratch& s, const std::vector<std::string>& args, const std::string& file) {
+Outcome with_stdin(const Scratch& s, const std::vector<std::string>& args, const std::string& file,
+                   const fretwear::test::Env& env = {}) {
   fretwear::test::Command command{{"/bin/sh", "-c", "f=$1; shift; exec \"$@\" < \"$f\"", "sh", file, FRETWEAR_EXE}};
   command.words.insert(command.words.end(), args.begin(), args.end());
-  return fretwear::test::run_program(command, s.work);
+  return fretwear::test::run_program(command, s.work, env);
 }
 
 TEST_CASE("the scene - is read from standard input, and a pipe or a device given by its path is refused") {
@@ -127,6 +128,15 @@ TEST_CASE("the scene - is read from standard input, and a pipe or a device given
   const Outcome named = with_stdin(s, {"run", "-", "-q"}, "unnamed.json");
   CHECK_MESSAGE(named.exited(kDone), named.describe());
   CHECK(fs::exists(s.work / "output" / "stdin" / "summary.json"));
+  // A wear run stopped (a Ctrl-C after two steps) tells how to resume it: the same scene on standard input again.
+  s.write("wear.json", wear_scene().dump());
+  const Outcome stopped = with_stdin(s, {"run", "-", "-q"}, "wear.json", {{"FRETWEAR_STOP_AT_STEP", "2"}});
+  CHECK_MESSAGE(stopped.exited(kInterrupted), stopped.describe());
+  CHECK(stopped.err.find("continue with: fretwear run --resume - (the same scene on standard input)") !=
+        std::string::npos);
+  const Outcome resumed = with_stdin(s, {"run", "--resume", "-"}, "wear.json");
+  CHECK_MESSAGE(resumed.exited(kDone), resumed.describe());
+  CHECK(resumed.err.find("resuming at cycle") != std::string::npos);
   // Bad text from standard input is named so, and nothing is written.
   s.write("cut.json", "{\"name\": ");
   const Snapshot before = fretwear::test::snapshot(s.work);

@@ -328,14 +328,14 @@ nlohmann::json FramesWearStepper::save() const {
           {"responses", stats_.responses},   {"last_error", stats_.last_error}, {"p_start", std::move(p)}};
 }
 
-void FramesWearStepper::restore(const nlohmann::json& j) {
+void FramesWearStepper::restore(const nlohmann::json& j, std::size_t cells) {
   stats_.accepted = j.at("accepted").get<int>();
   stats_.rejected = j.at("rejected").get<int>();
   stats_.unconverged = j.at("unconverged").get<int>();
   stats_.responses = j.at("responses").get<int>();
   stats_.last_error = j.at("last_error").get<double>();
   p_start_.clear();
-  for (const auto& v : j.at("p_start")) p_start_.push_back(unblob(v));
+  for (const auto& v : j.at("p_start")) p_start_.push_back(cell_vector(v, cells, "a position's warm start", false));
 }
 
 void FramesRateSystem::operator()(const std::vector<double>& z, std::vector<double>& dz, double /*N*/) {
@@ -357,11 +357,11 @@ nlohmann::json FramesRateSystem::save() const {
           {"cg_iterations", frames_->cg_iterations()}};
 }
 
-void FramesRateSystem::restore(const nlohmann::json& j) {
+void FramesRateSystem::restore(const nlohmann::json& j, std::size_t cells, std::size_t state_size) {
   evaluations_ = j.at("evaluations").get<long>();
-  rate_ = unblob(j.at("rate"));
+  rate_ = cell_vector(j.at("rate"), state_size, "the last rate");
   p_.clear();
-  for (const auto& v : j.at("p")) p_.push_back(unblob(v));
+  for (const auto& v : j.at("p")) p_.push_back(cell_vector(v, cells, "a position's pressure", false));
   frames_->count(j.at("solves").get<long>(), j.at("iterations").get<long>(), j.at("cg_iterations").get<long>());
 }
 

@@ -183,7 +183,8 @@ class FramesWearStepper {
 
   const FramesStepperStats& stats() const { return stats_; }
   nlohmann::json save() const;
-  void restore(const nlohmann::json& j);
+  // Throws InputError when a warm start does not hold `cells` values (engine/checkpoint.hpp, cell_vector).
+  void restore(const nlohmann::json& j, std::size_t cells);
 
  private:
   double tolerance_;
@@ -206,7 +207,8 @@ class FramesRateSystem {
   long evaluations() const { return evaluations_; }
   const std::vector<double>& last_rate() const { return rate_; }
   nlohmann::json save() const;
-  void restore(const nlohmann::json& j);
+  // Throws InputError when a pressure does not hold `cells` values or the rate state_size (cell_vector).
+  void restore(const nlohmann::json& j, std::size_t cells, std::size_t state_size);
 
  private:
   BodyFrames* frames_;

@@ -299,7 +299,7 @@ json save_implicit(const wear::ImplicitWearStepper& stepper) {
               {"p_half", blob(st.p_half)}};
 }
 
-void restore_implicit(const json& j, wear::ImplicitWearStepper& stepper) {
+void restore_implicit(const json& j, wear::ImplicitWearStepper& stepper, std::size_t cells) {
   wear::ImplicitStepperState st;
   st.stats.accepted = j.at("accepted").get<int>();
   st.stats.rejected = j.at("rejected").get<int>();
@@ -307,8 +307,8 @@ void restore_implicit(const json& j, wear::ImplicitWearStepper& stepper) {
   st.stats.responses = j.at("responses").get<int>();
   st.stats.last_error = j.at("last_error").get<double>();
   st.stats.unconverged = j.value("unconverged", 0);
-  st.p_full = unblob(j.at("p_full"));
-  st.p_half = unblob(j.at("p_half"));
+  st.p_full = cell_vector(j.at("p_full"), cells, "the stepper's warm start");
+  st.p_half = cell_vector(j.at("p_half"), cells, "the stepper's half-step warm start");
   stepper.restore(st);
 }
 
@@ -323,8 +323,8 @@ json save_explicit(const wear::ExplicitWearStepper& stepper, const wear::WearRat
 void restore_explicit(const json& j, wear::ExplicitWearStepper& stepper, wear::WearRateSystem& rate,
                       const std::vector<double>& w) {
   wear::CycleResponse last;
-  last.p = unblob(j.at("p"));
-  last.s = unblob(j.at("s"));
+  last.p = cell_vector(j.at("p"), w.size(), "the last response's pressure", false);
+  last.s = cell_vector(j.at("s"), w.size(), "the last response's slip", false);
   last.has_stick = j.at("stick")[0].get<bool>();
   last.stick_left = j.at("stick")[1].get<double>();
   last.stick_right = j.at("stick")[2].get<double>();
@@ -358,13 +358,23 @@ std::vector<double> unblob(const json& j) {
   return v;
 }
 
+std::vector<double> cell_vector(const json& j, std::size_t cells, const std::string& what, bool empty) {
+  const std::vector<double> v = j.is_binary() ? unblob(j) : j.get<std::vector<double>>();
+  if (!(v.size() == cells || (empty && v.empty())))
+    throw InputError(fmt::format("checkpoint: damaged: {} holds {} values, where this scene's grid has {} cells", what,
+                                 v.size(), cells));
+  if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); }))
+    throw InputError(fmt::format("checkpoint: damaged: {} holds a value that is not a number", what));
+  return v;
+}
+
 json contact_state_json(const ContactState& s) {
   return {{"p", blob(s.p)}, {"gap", blob(s.gap)}, {"approach", s.approach}};
 }
 
-void contact_state_from(const json& j, ContactState& s) {
-  s.p = unblob(j.at("p"));
-  s.gap = unblob(j.at("gap"));
+void contact_state_from(const json& j, ContactState& s, std::size_t cells, const std::string& what) {
+  s.p = cell_vector(j.at("p"), cells, what + "'s pressure");
+  s.gap = cell_vector(j.at("gap"), cells, what + "'s gap");
   s.approach = j.at("approach").get<double>();
 }
 

@@ -70,7 +70,7 @@ DriveState resume_wear(const nlohmann::json& j, const Scene& scene, std::vector<
 // The stepper schemas: what each stepper carries between steps besides w (its counts, and the warm starts or the
 // derivative its next step starts from).
 nlohmann::json save_implicit(const wear::ImplicitWearStepper& stepper);
-void restore_implicit(const nlohmann::json& j, wear::ImplicitWearStepper& stepper);
+void restore_implicit(const nlohmann::json& j, wear::ImplicitWearStepper& stepper, std::size_t cells);
 // The explicit stepper and its rate system (the last response, from which Dormand–Prince's carried derivative is
 // recomputed at w, the state restored).
 nlohmann::json save_explicit(const wear::ExplicitWearStepper& stepper, const wear::WearRateSystem& rate);
@@ -82,8 +82,14 @@ void restore_cycle_by_cycle(const nlohmann::json& j, wear::WearRateSystem& rate)
 // The pieces: vectors as raw doubles (exact, ±inf included), a contact solver's state, a record.
 nlohmann::json blob(const std::vector<double>& v);
 std::vector<double> unblob(const nlohmann::json& j);  // throws InputError on a size that is not whole doubles
+// A vector the checkpoint holds one value a cell of, a blob or a JSON array: `cells` values, or none where `empty`
+// (a warm start not made yet), none of them NaN (±inf is a gap off the pad). Anyone can write a checkpoint
+// (checkpoint_checksum), so one that does not fit is refused: InputError, "checkpoint: damaged", naming `what`.
+std::vector<double> cell_vector(const nlohmann::json& j, std::size_t cells, const std::string& what,
+                                bool empty = true);
 nlohmann::json contact_state_json(const ContactState& s);
-void contact_state_from(const nlohmann::json& j, ContactState& s);
+// A contact solver's state: its pressure and gap each cell_vector()s of `cells`; `what` names it in a refusal.
+void contact_state_from(const nlohmann::json& j, ContactState& s, std::size_t cells, const std::string& what);
 nlohmann::json record_json(const WearRecord& r);
 WearRecord record_from(const nlohmann::json& j);
 

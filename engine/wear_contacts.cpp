@@ -160,9 +160,10 @@ json AnalogyContactResponse::save() const {
 }
 
 void AnalogyContactResponse::restore(const json& j) {
-  contact_state_from(j.at("normal"), normal_);
-  contact_state_from(j.at("corrective"), corrective_);
-  contact_state_from(j.at("implicit"), implicit_);
+  const std::size_t n = std::size_t(cells());
+  contact_state_from(j.at("normal"), normal_, n, "the normal solve");
+  contact_state_from(j.at("corrective"), corrective_, n, "the corrective solve");
+  contact_state_from(j.at("implicit"), implicit_, n, "the contact-implicit solve");
   restore_counts(j);
 }
 
@@ -485,9 +486,10 @@ json response_json(const wear::CycleResponse& r) {
           {"stick_zones", r.stick_zones}};
 }
 
-void response_from(const json& j, wear::CycleResponse& r) {
-  j.at("p").get_to(r.p);
-  j.at("s").get_to(r.s);
+void response_from(const json& j, wear::CycleResponse& r, std::size_t cells, const std::string& what,
+                   bool empty = true) {
+  r.p = cell_vector(j.at("p"), cells, what + "'s pressure", empty);
+  r.s = cell_vector(j.at("s"), cells, what + "'s slip", empty);
   r.has_stick = j.at("has_stick").get<bool>();
   r.stick_left = j.at("stick_left").get<double>();
   r.stick_right = j.at("stick_right").get<double>();
@@ -526,11 +528,12 @@ json IncrementalContactResponse::save() const {
 
 void IncrementalContactResponse::restore(const json& j) {
   if (j.value("route", "") != "incremental") throw InputError("checkpoint: written by the analogy route's wear run");
-  contact_state_from(j.at("normal"), normal_);
-  contact_state_from(j.at("implicit"), implicit_);
-  if (j.contains("reference")) contact_state_from(j.at("reference"), reference_);
+  const std::size_t n = std::size_t(cells());
+  contact_state_from(j.at("normal"), normal_, n, "the normal solve");
+  contact_state_from(j.at("implicit"), implicit_, n, "the contact-implicit solve");
+  if (j.contains("reference")) contact_state_from(j.at("reference"), reference_, n, "the reference solve");
   restore_counts(j);
-  if (j.contains("q_top")) j.at("q_top").get_to(q_top_);
+  if (j.contains("q_top")) q_top_ = cell_vector(j.at("q_top"), n, "the cycle's top shear");
   coupled_responses_ = j.value("coupled_responses", 0L);
   mirrored_responses_ = j.value("mirrored_responses", 0L);
   unsteady_responses_ = j.value("unsteady_responses", 0L);
@@ -545,14 +548,18 @@ void IncrementalContactResponse::restore(const json& j) {
   if (!analogy_) throw InputError("checkpoint: written by a wear run with the lagged coupling, which this one has not");
   const json& l = j.at("lagged");
   analogy_->restore(l.at("analogy"));
-  response_from(l.at("uncoupled"), uncoupled_);
-  response_from(l.at("uncoupled_ref"), uncoupled_ref_);
-  response_from(l.at("coupled_ref"), coupled_ref_);
-  l.at("slip_correction").get_to(slip_correction_);
-  l.at("shear_correction").get_to(shear_correction_);
-  touching_correction_.clear();  // absent from checkpoints written before the slip on touching was lagged
-  if (l.contains("touching_correction")) l.at("touching_correction").get_to(touching_correction_);
   gain_ = l.at("gain").get<double>();
+  // A lag that may go on (γ ≥ 0) reads its references and corrections on every cell; before the first refresh
+  // they may be empty. The uncoupled response is the next one's before it is read.
+  const bool lagging = gain_ >= 0.0;
+  response_from(l.at("uncoupled"), uncoupled_, n, "the lag's uncoupled response");
+  response_from(l.at("uncoupled_ref"), uncoupled_ref_, n, "the lag's uncoupled reference", !lagging);
+  response_from(l.at("coupled_ref"), coupled_ref_, n, "the lag's coupled reference", !lagging);
+  slip_correction_ = cell_vector(l.at("slip_correction"), n, "the lag's slip correction", !lagging);
+  shear_correction_ = cell_vector(l.at("shear_correction"), n, "the lag's shear correction", !lagging);
+  touching_correction_.clear();  // absent from checkpoints written before the slip on touching was lagged
+  if (l.contains("touching_correction"))
+    touching_correction_ = cell_vector(l.at("touching_correction"), n, "the lag's correction on touching cells");
   area_ref_ = l.at("area_ref").get<double>();
   Q_correction_ = l.value("Q_correction", 0.0);
 }

@@ -741,7 +741,7 @@ void WearRun::drive_implicit(double rate_max) {
   try {
     drive(
         stepper, wear::ResponseRef{&contact_}, dN, [&] { return save_implicit(stepper); },
-        [&](const json& j) { restore_implicit(j, stepper); },
+        [&](const json& j) { restore_implicit(j, stepper, w_.size()); },
         [&](const DriveState&) {
           stage_.steps = stepper.stats().accepted;
           stage_.unconverged_steps = stepper.stats().unconverged;
@@ -783,7 +783,7 @@ void WearRun::drive_frames(double rate_max) {
           return j;
         },
         [&](const json& j) {
-          rate.restore(j);
+          rate.restore(j, std::size_t(model_.grid.n), w_.size());
           const int accepted = j.at("accepted").get<int>();
           stepper.restore({accepted, j.at("rejected").get<int>(), j.at("max_step").get<double>()}, w_,
                           accepted > 0 ? &rate.last_rate() : nullptr);
@@ -818,7 +818,7 @@ void WearRun::drive_frames(double rate_max) {
           return j;
         },
         [&](const json& j) {
-          stepper.restore(j);
+          stepper.restore(j, std::size_t(model_.grid.n));
           frames.count(j.at("solves").get<long>(), j.at("iterations").get<long>(),
                        j.at("cg_iterations").get<long>());
         },

@@ -282,33 +282,24 @@ TEST_CASE("--resume refuses a damaged checkpoint, and a run without --resume say
   CHECK(again.all().find("checkpoint") == std::string::npos);
 }
 
-// The checksum tells a checkpoint damaged after it was written, but anyone can write one: a checkpoint re-signed after
-// an edit is still checked against the scene, and refused (exit 2, nothing written) where it does not fit it. Its wear
-// emptied was a segmentation fault, one value of it a read past its end; its records replaced by numbers an internal
-// error (exit 1); its place past the last record a run reported completed at a fraction of its cycles.
-TEST_CASE("--resume refuses a re-signed checkpoint whose content does not fit the scene") {
+namespace {
+
+using Edits = std::vector<std::pair<std::string, std::function<void(json&)>>>;
+
+// A blob of k doubles of 0: a vector of the wrong length for any grid here.
+json doubles(std::size_t k) { return json::binary(std::vector<std::uint8_t>(8 * k, 0)); }
+
+// Stops the run of `scene` after `step` steps; then each edit of its checkpoint, re-signed, is refused by --resume
+// (exit 2, "checkpoint: damaged", the stopped run's results untouched), and the checkpoint as written resumes.
+void check_edits_refused(const std::string& scene, int step, const Edits& edits) {
   Scratch s;
-  s.write("s.json", scene());
+  s.write("s.json", scene);
   const fs::path out = s.work / "out" / "resume", checkpoint = s.work / "out" / "resume.checkpoint";
-  REQUIRE(s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "5"}}).exited(kInterrupted));
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", std::to_string(step)}})
+              .exited(kInterrupted));
   const std::string original = read_file(checkpoint), kept = read_file(out / "summary.json");
   const json j0 = json::from_cbor(original);
   REQUIRE(j0.at("checksum") == fretwear::checkpoint_checksum(j0));
-  const std::vector<std::pair<std::string, std::function<void(json&)>>> edits = {
-      {"wear emptied", [](json& j) { j["w"] = json::binary({}); }},
-      {"wear of one value", [](json& j) { j["w"] = json::binary(std::vector<std::uint8_t>(8, 0)); }},
-      {"wear not a number",
-       [](json& j) {
-         auto bytes = j["w"].get_binary();
-         const double nan = std::nan("");
-         std::memcpy(bytes.data(), &nan, sizeof nan);
-         j["w"] = json::binary(bytes);
-       }},
-      {"records replaced by numbers", [](json& j) { j["records"] = {1, 2, 3}; }},
-      {"records dropped", [](json& j) { j["records"] = json::array(); }},
-      {"past the last record", [](json& j) { j["next_record"] = 1000; }},
-      {"past the last cycle", [](json& j) { j["cycles"] = 1e300; }},
-      {"its contact gone", [](json& j) { j.erase("contact"); }}};
   for (const auto& [what, edit] : edits) {
     CAPTURE(what);
     json j = j0;
@@ -323,6 +314,72 @@ TEST_CASE("--resume refuses a re-signed checkpoint whose content does not fit th
   }
   write_file(checkpoint, original);  // as written, it resumes
   CHECK(s.fretwear({"run", "--resume", "s.json", "-q"}).exited(kDone));
+}
+
+}  // namespace
+
+// The checksum tells a checkpoint damaged after it was written, but anyone can write one: a checkpoint re-signed after
+// an edit is still checked against the scene, and refused (exit 2, nothing written) where it does not fit it. Its wear
+// emptied was a segmentation fault, one value of it a read past its end; its records replaced by numbers an internal
+// error (exit 1); its place past the last record a run reported completed at a fraction of its cycles; a warm start
+// of the wrong length was taken for none, and the run went on from a state it had not been in.
+TEST_CASE("--resume refuses a re-signed checkpoint whose content does not fit the scene") {
+  check_edits_refused(
+      scene(), 5,
+      {{"wear emptied", [](json& j) { j["w"] = json::binary({}); }},
+       {"wear of one value", [](json& j) { j["w"] = doubles(1); }},
+       {"wear not a number",
+        [](json& j) {
+          auto bytes = j["w"].get_binary();
+          const double nan = std::nan("");
+          std::memcpy(bytes.data(), &nan, sizeof nan);
+          j["w"] = json::binary(bytes);
+        }},
+       {"records replaced by numbers", [](json& j) { j["records"] = {1, 2, 3}; }},
+       {"records dropped", [](json& j) { j["records"] = json::array(); }},
+       {"past the last record", [](json& j) { j["next_record"] = 1000; }},
+       {"past the last cycle", [](json& j) { j["cycles"] = 1e300; }},
+       {"its contact gone", [](json& j) { j.erase("contact"); }},
+       {"its contact's pressure of one value", [](json& j) { j["contact"]["normal"]["p"] = doubles(1); }},
+       {"its contact's gap of three values", [](json& j) { j["contact"]["implicit"]["gap"] = doubles(3); }},
+       {"its stepper's pressure of one value", [](json& j) { j["stepper_state"]["p_full"] = doubles(1); }},
+       {"its stepper's half-step pressure of three values", [](json& j) { j["stepper_state"]["p_half"] = doubles(3); }},
+       {"a record's stick zone of one end", [](json& j) { j["records"][0]["stick_zone"] = {1.0}; }},
+       {"a record's contact a string", [](json& j) { j["records"][0]["contact"] = "wide"; }}});
+}
+
+TEST_CASE("--resume refuses a re-signed checkpoint whose lagged coupling or body frames do not fit the grid") {
+  // Dissimilar bodies (the lag's references and corrections, read on every cell once it lags: γ ≥ 0).
+  std::string dissimilar = scene();
+  const std::string both = R"("materials": {"both": {"E": 2e11, "nu": 0.3}})";
+  dissimilar.replace(dissimilar.find(both), both.size(),
+                     R"("materials": {"pad": {"E": 2e11, "nu": 0.3}, "specimen": {"E": 7.1e10, "nu": 0.33}})");
+  const auto lagging = [](json& j) -> json& {
+    json& l = j["contact"]["lagged"];
+    l["gain"] = 0.5;
+    return l;
+  };
+  check_edits_refused(
+      dissimilar, 5,
+      {{"the lag's slip correction of one value", [&](json& j) { lagging(j)["slip_correction"] = {0.0}; }},
+       {"the lag's shear correction emptied", [&](json& j) { lagging(j)["shear_correction"] = json::array(); }},
+       {"the lag's coupled reference of two cells", [&](json& j) { lagging(j)["coupled_ref"]["p"] = {1.0, 2.0}; }},
+       {"the cycle's top shear of one value", [](json& j) { j["contact"]["q_top"] = {0.0}; }}});
+  // Each body in its own frame, under both steppers that carry the positions' pressures.
+  for (const std::string stepper : {"implicit", "explicit"}) {
+    INFO(stepper);
+    const std::string frames = R"({"name": "resume", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+      "profile": {"type": "cylinder", "R": 6e-3}, "friction": 0.9,
+      "load": {"P": 18500, "control": "displacement", "delta": 25e-6},
+      "grid": {"cells": 256, "window": [-0.6e-3, 0.6e-3], "reference_depth": 6e-3},
+      "effects": {"wear": {"k": 5e-14, "cycles": 3000, "record": 4, "stepper": ")" +
+                               stepper + R"("}}, "output": {"dir": "out/resume", "plots": false}})";
+    const std::string key = stepper == "implicit" ? "p_start" : "p";
+    Edits edits = {{"a position's pressure of one value", [key](json& j) { j["stepper_state"][key][0] = doubles(1); }}};
+    if (stepper == "explicit")
+      edits.push_back({"the last rate of three values", [](json& j) { j["stepper_state"]["rate"] = doubles(3); }});
+    check_edits_refused(frames, 3, edits);
+  }
 }
 
 TEST_CASE("--resume refuses another scene's checkpoint, and without one runs from the start") {

@@ -53,8 +53,11 @@ struct Marker {
   std::map<std::string, std::string> checksums;
 };
 
-// fnv1a64() of the file `p`'s bytes; empty when it cannot be read.
+// fnv1a64() of the file `p`'s bytes; empty when it cannot be read or is not a regular file (a pipe's opening would
+// wait for a writer, a device's reading might never end).
 std::string file_checksum(const fs::path& p) {
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(p, ec))) return {};
   std::ifstream in(p, std::ios::binary);
   if (!in) return {};
   std::ostringstream bytes;
@@ -64,6 +67,8 @@ std::string file_checksum(const fs::path& p) {
 
 Marker read_marker(const fs::path& dir) {
   Marker m;
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(dir / kOutputMarker, ec))) return m;  // fretwear writes a file there
   std::ifstream in(dir / kOutputMarker, std::ios::binary);
   const json j = json::parse(in, nullptr, false);
   if (!j.is_object() || j.value("format", "") != kMarkerFormat) return m;  // the first format: a line of text
@@ -214,11 +219,17 @@ void walk_foreign(const fs::path& folder, const std::string& rel, const Marker& 
     const fs::path p = folder / name;
     // fretwear writes no links: one under a name it wrote is the user's, whatever it leads to (a file of the same
     // bytes passes the checksum), and replacing the folder would remove it.
-    if (fs::is_symlink(fs::symlink_status(p, ec))) {
+    const fs::file_status status = fs::symlink_status(p, ec);
+    if (fs::is_symlink(status)) {
       found.push_back(shown + rel + name + " (a link)");
       continue;
     }
-    const bool is_folder = fs::is_directory(fs::symlink_status(p, ec)), marked = is_folder && has_marker(p);
+    // Nor pipes, sockets or devices: one is the user's, and never opened (a pipe's opening waits for a writer).
+    if (!fs::is_directory(status) && !fs::is_regular_file(status)) {
+      found.push_back(shown + rel + name + " (not a regular file)");
+      continue;
+    }
+    const bool is_folder = fs::is_directory(status), marked = is_folder && has_marker(p);
     const std::string path = rel + name + (is_folder ? "/" : "");
     bool own = m.listed ? m.entries.count(path) > 0 : written_by_name(rel, name, is_folder, marked);
     // A staging folder killed between its making and its marker's (a sweep's run, OutputFolder::stage()) is empty:
@@ -436,7 +447,7 @@ bool written_name(const std::string& file) {
 
 bool has_marker(const fs::path& dir) {
   std::error_code ec;
-  return fs::is_regular_file(dir / kOutputMarker, ec);
+  return fs::is_regular_file(fs::symlink_status(dir / kOutputMarker, ec));  // fretwear writes no links
 }
 
 bool killed_leftover(const fs::path& dir, long pid, std::vector<std::string>* foreign) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <doctest/doctest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "system/program.hpp"
@@ -704,6 +705,36 @@ TEST_CASE("output.dir refused when fretwear's folder holds entries it did not wr
          return Setup{};
        },
        "run", "summary.json (a link)"},
+      // fretwear writes regular files only, and never opens a pipe: opening one to read waits for a writer, and the
+      // check of the folder waited for ever.
+      {"a file fretwear wrote, replaced by a named pipe",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         const fs::path summary = s.work / "output" / "h" / "summary.json";
+         fs::remove(summary);
+         REQUIRE(::mkfifo(summary.c_str(), 0600) == 0);
+         return Setup{};
+       },
+       "run", "summary.json (not a regular file)"},
+      {"its marker replaced by a named pipe",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         const fs::path marker = s.work / "output" / "h" / ".fretwear";
+         fs::remove(marker);
+         REQUIRE(::mkfifo(marker.c_str(), 0600) == 0);
+         return Setup{};
+       },
+       "run", "no .fretwear marker"},
+      {"its marker replaced by a link to a copy of it",
+       [=](const Scratch& s) {
+         earlier_run(s);
+         const fs::path marker = s.work / "output" / "h" / ".fretwear";
+         fs::copy_file(marker, s.work / "marker.json");
+         fs::remove(marker);
+         fs::create_symlink("../../marker.json", marker);
+         return Setup{};
+       },
+       "run", "no .fretwear marker"},
       {"a run folder a convergence study made, a file of the user's added",
        [](const Scratch& s) {
          s.write("s.json", scene_text(Setup{}));

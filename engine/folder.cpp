@@ -619,9 +619,17 @@ fs::path OutputFolder::path(const std::string& file) const {
 }
 
 void OutputFolder::write(const std::string& file, const std::string& content) const {
+  errno = 0;
   std::ofstream out(path(file), std::ios::binary);
   out << content;
-  if (!out) throw Error("cannot write " + path(file).string());
+  out.close();
+  if (!out) {  // a full disk, a quota, a file size limit: the staging folder goes with this object, uncommitted
+    const std::string why = errno != 0 ? std::strerror(errno) : "the write failed";
+    throw SceneError("the results cannot be written",
+                     {fmt::format("output.dir: cannot write {} into \"{}\" ({}); nothing of this run is kept and "
+                                  "the folder is as it was: free some space, or give another output.dir",
+                                  file, dir_.string(), why)});
+  }
 }
 
 void OutputFolder::write_json(const std::string& file, const json& j) const { write(file, j.dump(2) + "\n"); }

@@ -723,9 +723,10 @@ std::vector<std::string> printable(std::vector<std::string> problems) {
 
 }  // namespace
 
-SceneError::SceneError(std::vector<std::string> problems)
-    : InputError("the scene is invalid:\n  " + join(printable(problems), "\n  ")),
-      problems_(printable(std::move(problems))) {}
+SceneError::SceneError(std::vector<std::string> problems) : SceneError("the scene is invalid", std::move(problems)) {}
+
+SceneError::SceneError(const std::string& heading, std::vector<std::string> problems)
+    : InputError(heading + ":\n  " + join(printable(problems), "\n  ")), problems_(printable(std::move(problems))) {}
 
 namespace {
 

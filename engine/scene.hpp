@@ -25,6 +25,8 @@ namespace fretwear {
 class SceneError : public InputError {
  public:
   explicit SceneError(std::vector<std::string> problems);
+  // The same problems under another heading than "the scene is invalid" (e.g. "the results cannot be written").
+  SceneError(const std::string& heading, std::vector<std::string> problems);
   const std::vector<std::string>& problems() const { return problems_; }
   // The scene's output folder (output.dir, or output/<name>) when its problems are elsewhere: the folder's own
   // problems (output_dir_problems()) can then be said with them, all at once.

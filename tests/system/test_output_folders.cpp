@@ -536,6 +536,32 @@ TEST_CASE("output.dir refused when its name with the staging suffix passes the f
                  wear_longest);
 }
 
+TEST_CASE("results that cannot be written (a full disk) exit 2, keep nothing of the run and leave the earlier results") {
+  // A file size limit stands in for a full disk: past it a write fails (EFBIG), as on a full one (ENOSPC), once
+  // SIGXFSZ, which would end the process first, is ignored (an ignored signal stays so across exec).
+  Scratch s;
+  json scene = base_scene();
+  scene["output"] = {{"plots", false}};
+  s.write("s.json", scene.dump());
+  REQUIRE(s.fretwear({"run", "s.json", "-q"}).exited(kDone));
+  scene["grid"]["cells"] = 512;
+  s.write("s.json", scene.dump());
+  const Snapshot before = s.snapshot();
+  const fretwear::test::Command limited{
+      {"/bin/sh", "-c", "ulimit -f 8 && trap '' XFSZ && exec \"$@\"", "sh", FRETWEAR_EXE, "run", "s.json"}};
+  const Outcome r = fretwear::test::run_program(limited, s.work);
+  CHECK_MESSAGE(r.exited(kInvalid), r.describe());
+  CHECK_MESSAGE(r.err.find("fretwear: the results cannot be written:\n  output.dir: cannot write ") != std::string::npos,
+                r.describe());
+  CHECK_MESSAGE(r.err.find("(File too large); nothing of this run is kept and the folder is as it was") !=
+                    std::string::npos,
+                r.describe());
+  CHECK(r.err.find("internal error") == std::string::npos);
+  CHECK_MESSAGE(changes(before, s.snapshot()).empty(), "the tree changed: " << join(changes(before, s.snapshot())));
+  // Without the limit the same run replaces them.
+  CHECK(s.fretwear({"run", "s.json", "-q"}).exited(kDone));
+}
+
 TEST_CASE("a replaced folder keeps its permission bits") {
   // The new results folder takes the place of the one it replaces, with its mode: an empty folder of the user's and
   // earlier results alike.

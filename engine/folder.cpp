@@ -599,7 +599,9 @@ void OutputFolder::stage() const {
   staged_ = true;
 }
 
-OutputFolder::~OutputFolder() {
+OutputFolder::~OutputFolder() { discard(); }
+
+void OutputFolder::discard() {
   if (committed_ || kept_ || !staged_) return;
   std::error_code ec;
   fs::remove_all(staging_, ec);
@@ -609,6 +611,8 @@ OutputFolder::~OutputFolder() {
     if (entries == 1) fs::remove(*p / kOutputMarker, ec);  // a marker made here, alone
     fs::remove(*p, ec);                                    // only when empty
   }
+  made_parents_.clear();
+  kept_ = true;  // nothing left to remove, nor to write into
 }
 
 fs::path OutputFolder::path(const std::string& file) const {
@@ -625,7 +629,7 @@ void OutputFolder::write(const std::string& file, const std::string& content) co
   out.close();
   if (!out) {  // a full disk, a quota, a file size limit: the staging folder goes with this object, uncommitted
     const std::string why = errno != 0 ? std::strerror(errno) : "the write failed";
-    throw SceneError("the results cannot be written",
+    throw ResultsNotWritten("the results cannot be written",
                      {fmt::format("output.dir: cannot write {} into \"{}\" ({}); nothing of this run is kept and "
                                   "the folder is as it was: free some space, or give another output.dir",
                                   file, dir_.string(), why)});

@@ -93,6 +93,13 @@ struct Written {
   std::vector<std::string> tables, plots;
 };
 
+// A result file that cannot be written (a full disk, a quota, a file size limit): a problem of output.dir, under
+// the heading "the results cannot be written". The command keeps nothing of its run (exit status 2).
+class ResultsNotWritten : public SceneError {
+ public:
+  using SceneError::SceneError;
+};
+
 class OutputFolder {
  public:
   // dir: the target of `command`, checked by output_dir_problems(). A commit of the run's folder carries over the
@@ -117,6 +124,9 @@ class OutputFolder {
   // longer a folder of fretwear's), with nothing of it touched; Error when the file system refuses a step. Either
   // way the results stay in the staging folder, marked as results, and the message names it.
   void commit();
+  // Removes the staging folder and the folders made for it, as the destructor of an uncommitted one does: nothing of
+  // the command is left. The object writes nothing more after it.
+  void discard();
   const std::filesystem::path& dir() const { return dir_; }
 
  private:

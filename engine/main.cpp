@@ -445,10 +445,16 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
       out.commit();
     }
     if (result.wear && result.wear->interrupted) {
+      const std::string& failure = result.wear->checkpoint_failure;
       std::cerr << fmt::format("fretwear: {}: stopped by signal {} at cycle {:.0f} of {:.0f} (recorded up to cycle "
-                               "{:.0f}); results so far in {}/; continue with: fretwear run --resume {}\n",
+                               "{:.0f}); results so far in {}/; continue with: fretwear run --resume {}{}\n",
                                scene.name, int(g_signal), result.wear->cycles_reached, scene.wear->cycles,
-                               result.wear->records.back().cycles, scene.output_dir.string(), again);
+                               result.wear->records.back().cycles, scene.output_dir.string(), again,
+                               failure.empty() ? ""
+                                               : fmt::format(" (but the checkpoint of this stop could not be "
+                                                             "written: {}; --resume starts from the last one that "
+                                                             "was, or from the start)",
+                                                             failure));
       return kExitSignal + int(g_signal);
     }
     if (scene.wear) std::filesystem::remove(control.checkpoint, ec);  // done: the checkpoint has served
@@ -467,6 +473,25 @@ int run(const std::string& path, bool quiet, bool verbose, bool resume, double c
     if (g_signal == 0) throw;
     std::cerr << fmt::format("fretwear: {}\n", e.what());
     return stopped_after_writing(scene);
+  } catch (const ResultsNotWritten& e) {
+    progress.finish();
+    // The wear stage is done, and its last checkpoint holds what it reached: kept, it spares solving again once
+    // there is room.
+    std::optional<double> at;
+    try {
+      if (!control.checkpoint.empty())
+        if (const auto j = read_checkpoint(control.checkpoint, scene)) at = j->at("cycles").get<double>();
+    } catch (const std::exception&) {  // damaged or of another scene: not one to offer
+    }
+    if (!at) {
+      out.discard();
+      if (!control.resume) forget_checkpoint();  // and the folder made for one, now empty
+      throw;
+    }
+    std::cerr << fmt::format("fretwear: {}\n  (the wear stage's checkpoint is kept: once the results can be written, "
+                             "fretwear run --resume {} takes the run up from cycle {:.0f})\n",
+                             e.what(), again, *at);
+    return kExitInvalid;
   } catch (const InputError&) {
     progress.finish();
     if (!control.resume) forget_checkpoint();

@@ -685,17 +685,24 @@ bool WearRun::boundary(const DriveState& at, bool recorded, Save& save) {
   const bool due =
       std::chrono::duration<double>(clock::now() - last_checkpoint_).count() >= control_.checkpoint_interval;
   if (!control_.checkpoint.empty() && (recorded || stop || due)) {
+    json j;
     if (blocks_) {  // every record so far, and where the blocks stand
       std::vector<WearRecord> all = *blocks_->earlier;
       all.insert(all.end(), stage_.records.begin(), stage_.records.end());
-      json j = wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_, all, contact_.save(), save());
+      j = wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_, all, contact_.save(), save());
       j["blocks"] = blocks_->values;
       j["blocks"]["block"] = blocks_->block;
       j["blocks"]["earlier_records"] = blocks_->earlier->size();
-      write_checkpoint(control_.checkpoint, j);
     } else {
-      write_checkpoint(control_.checkpoint, wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_,
-                                                            stage_.records, contact_.save(), save()));
+      j = wear_checkpoint(scene_, control_.scene_hash, at, times_.back(), w_, stage_.records, contact_.save(), save());
+    }
+    // A checkpoint is insurance: one that cannot be written (a full disk) leaves the last one in place, and the run
+    // goes on; the caller says so where it offers --resume.
+    try {
+      write_checkpoint(control_.checkpoint, j);
+      stage_.checkpoint_failure.clear();
+    } catch (const Error& e) {
+      stage_.checkpoint_failure = e.what();
     }
     last_checkpoint_ = clock::now();
   }

@@ -128,6 +128,7 @@ struct WearStage {
   bool interrupted = false;               // stopped on request before the last cycle (records hold what was done)
   double cycles_reached = 0.0;            // where the run stopped (the last cycle when it completed)
   std::optional<double> resumed_from;     // the cycle of the checkpoint the run continued from
+  std::string checkpoint_failure;         // why the last checkpoint could not be written; empty when it was
   // Under displacement control, with an asymptote: the limit of the last record's stick zones were they to stand
   // still (settled_worn_area(), contact/displacement_limit.hpp), and its Q, δ over their stuck compliance; what the
   // run tends to once its stick zone has settled, which growth over worn points leaves below the asymptote.

@@ -382,6 +382,68 @@ TEST_CASE("--resume refuses a re-signed checkpoint whose lagged coupling or body
   }
 }
 
+namespace {
+
+// fretwear ARGS with files limited to `blocks` blocks of the shell's ulimit -f: past it a write fails (EFBIG), as on
+// a full disk, once SIGXFSZ is ignored (it stays so across exec).
+Outcome with_file_limit(const Scratch& s, int blocks, const std::vector<std::string>& args,
+                        const fretwear::test::Env& env = {}) {
+  fretwear::test::Command limited{{"/bin/sh", "-c", "ulimit -f " + std::to_string(blocks) + " && trap '' XFSZ && exec \"$@\"",
+                                   "sh", FRETWEAR_EXE}};
+  limited.words.insert(limited.words.end(), args.begin(), args.end());
+  return fretwear::test::run_program(limited, s.work, env);
+}
+
+}  // namespace
+
+// A checkpoint is insurance: one that cannot be written (a full disk) leaves the last one written, and the run goes
+// on; before, the run ended there as an internal error. Results that cannot be written then keep that checkpoint
+// (free some space and --resume), or, with none written, leave nothing at all.
+TEST_CASE("a wear run on a full disk goes on past a checkpoint it cannot write, and keeps the last one written") {
+  Scratch s;
+  s.write("s.json", scene());
+  const fs::path checkpoint = s.work / "out" / "resume.checkpoint";
+  // Room for the first checkpoint (cycle 0), not the later ones, nor the results.
+  const Outcome full = with_file_limit(s, 60, {"run", "s.json", "-q"});
+  CHECK_MESSAGE(full.exited(kInvalid), full.describe());
+  CHECK(full.err.find("internal error") == std::string::npos);
+  CHECK_MESSAGE(full.err.find("fretwear: the results cannot be written:\n  output.dir: cannot write ") !=
+                    std::string::npos,
+                full.describe());
+  CHECK_MESSAGE(full.err.find("(the wear stage's checkpoint is kept: once the results can be written, fretwear run "
+                              "--resume s.json takes the run up from cycle 0)") != std::string::npos,
+                full.describe());
+  REQUIRE(fs::exists(checkpoint));
+  CHECK(!fs::exists(s.work / "out" / "resume"));
+  CHECK(!partial_left(s.work / "out"));
+  const Outcome resumed = s.fretwear({"run", "--resume", "s.json", "-q"});
+  CHECK_MESSAGE(resumed.exited(kDone), resumed.describe());
+  CHECK(!fs::exists(checkpoint));
+  // Room for nothing: no checkpoint, no results, and not the folder made for them.
+  fs::remove_all(s.work / "out");
+  const Outcome none = with_file_limit(s, 8, {"run", "s.json", "-q"});
+  CHECK_MESSAGE(none.exited(kInvalid), none.describe());
+  CHECK(none.err.find("fretwear: the results cannot be written:") != std::string::npos);
+  CHECK(none.err.find("checkpoint") == std::string::npos);
+  CHECK(!fs::exists(s.work / "out"));
+  // Stopped where its checkpoint does not fit (dissimilar bodies, whose checkpoint holds the lag's vectors too, 49 kB
+  // against 22 kB for the largest result at two records): the stop says --resume cannot start from there.
+  std::string dissimilar = scene();
+  const std::string eight = R"("record": 8)";
+  dissimilar.replace(dissimilar.find(eight), eight.size(), R"("record": 2)");
+  const std::string both = R"("materials": {"both": {"E": 2e11, "nu": 0.3}})";
+  dissimilar.replace(dissimilar.find(both), both.size(),
+                     R"("materials": {"pad": {"E": 2e11, "nu": 0.3}, "specimen": {"E": 7.1e10, "nu": 0.33}})");
+  s.write("s.json", dissimilar);
+  const Outcome stopped = with_file_limit(s, 60, {"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "5"}});
+  CHECK_MESSAGE(stopped.exited(kInterrupted), stopped.describe());
+  CHECK_MESSAGE(stopped.err.find("continue with: fretwear run --resume s.json (but the checkpoint of this stop could "
+                                 "not be written: cannot write the checkpoint ") != std::string::npos,
+                stopped.describe());
+  CHECK(stopped.err.find("File too large; --resume starts from the last one that was, or from the start)") !=
+        std::string::npos);
+}
+
 TEST_CASE("--resume refuses another scene's checkpoint, and without one runs from the start") {
   Scratch s;
   s.write("s.json", scene());

@@ -1,6 +1,7 @@
 #include "engine/plot.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -91,8 +92,10 @@ bool run_gnuplot(const fs::path& dir, const std::string& script_file) {
   const auto logged = fs::file_size(log_file, ec);
   const bool said_nothing = ec || logged == logged_before;
   if (!ec && logged == 0) fs::remove(log_file, ec);
-  if (failed == ENOENT) {
-    std::cerr << "fretwear: gnuplot not found; plots skipped (install it: apt-get install gnuplot-nox)\n";
+  if (failed == ENOENT) {  // said once a process: every later script finds the same PATH
+    static std::atomic<bool> said{false};
+    if (!said.exchange(true))
+      std::cerr << "fretwear: gnuplot not found; plots skipped (install it: apt-get install gnuplot-nox)\n";
     return false;
   }
   if (failed) {

@@ -294,6 +294,8 @@ TEST_CASE("without gnuplot on PATH a run completes with no plots and says gnuplo
   const Outcome r = s.fretwear({"run", "c.json", "-q"}, no_gnuplot);
   CHECK_MESSAGE(r.exited(kDone), r.describe());
   CHECK_MESSAGE(r.err.find("fretwear: gnuplot not found; plots skipped") != std::string::npos, r.describe());
+  // Said once, however many plot scripts the run has (the normal contact's and the cycle's here).
+  CHECK_MESSAGE(r.err.find("gnuplot not found") == r.err.rfind("gnuplot not found"), r.describe());
   const fs::path dir = s.work / "output" / "c";
   REQUIRE(fs::exists(dir / "summary.json"));
   const json summary = json::parse(read_file(dir / "summary.json"));

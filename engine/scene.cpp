@@ -1827,6 +1827,8 @@ Scene load_scene(const std::filesystem::path& path) {
     if (text.size() > kMaxSceneBytes)
       throw SceneError({fmt::format("standard input: holds more than {} bytes, the most a scene may be",
                                     kMaxSceneBytes)});
+    if (text.empty())  // closed, or nothing piped into it
+      throw SceneError({"standard input: is empty; give the scene on it (fretwear run - < scene.json), or its path"});
     return parse_scene_text(text, "stdin", "standard input", fs::path());
   }
   std::error_code ec;

@@ -143,6 +143,10 @@ TEST_CASE("the scene - is read from standard input, and a pipe or a device given
   const Outcome cut = with_stdin(s, {"run", "-"}, "cut.json");
   CHECK_MESSAGE(cut.exited(kInvalid), cut.describe());
   CHECK(cut.err.find("standard input: not valid JSON") != std::string::npos);
+  // Nothing on standard input is said so (the runner's own standard input is /dev/null).
+  const Outcome empty = s.fretwear({"validate", "-"});
+  CHECK_MESSAGE(empty.exited(kInvalid), empty.describe());
+  CHECK(empty.err.find("standard input: is empty; give the scene on it") != std::string::npos);
   // A sweep's ranks each read the scene, which standard input cannot give them.
   const Outcome sweep = with_stdin(s, {"sweep", "-", "--vary", "friction=0.3,0.4"}, "s.json");
   CHECK_MESSAGE(sweep.exited(kInvalid), sweep.describe());

@@ -90,10 +90,20 @@ CycleResult TangentialSolver::solve_cycle(std::span<const double> g0, const Cont
     r.slip_max = std::max(r.slip_max, r.slip_range[i]);
   }
 
+  const auto stick = locate_zones(grid, top.p, g0);
   // The slip range peaks at the contact's outer edges, inside a cell: g* is smooth there, so interpolate it at the
-  // located edge between the cell centres that straddle it.
+  // located edge between the cell centres that straddle it. Not where the stick zone reaches the edge: its slip zone
+  // is narrower than a cell, g* is 0 at the edge to within it, and the interpolation would read the gap beyond the
+  // contact (a slip of the order of the gap one cell out, where the load's is far below it).
+  const auto stuck = [&](double xe) {
+    const double tol = 1e-9 * grid.h();
+    return std::any_of(stick.begin(), stick.end(), [&](const Zone& s) {
+      return s.left.x <= xe + tol && xe - tol <= s.right.x;
+    });
+  };
   for (const Zone& z : zones) {
     for (double xe : {z.left.x, z.right.x}) {
+      if (stuck(xe)) continue;
       const double s = (xe - grid.x_min) / grid.h() - 0.5;
       const int i0 = std::clamp(int(std::floor(s)), 0, n - 2);
       const double w = std::clamp(s - i0, 0.0, 1.0);
@@ -103,7 +113,6 @@ CycleResult TangentialSolver::solve_cycle(std::span<const double> g0, const Cont
     }
   }
 
-  const auto stick = locate_zones(grid, top.p, g0);
   for (const Zone& z : stick) r.stick_zones.emplace_back(z.left.x, z.right.x);
   if (!stick.empty()) r.stick_zone = Interval{stick.front().left.x, stick.back().right.x};
   const auto stick_mid = locate_zones(grid, mid.p, g0);

@@ -190,11 +190,22 @@ void slip_resolution(const NormalResult& n, const CycleStage& cycle, std::vector
     for (const auto& s : c.stick_zones)
       if (s.second > z.left.x && s.first < z.right.x) first = std::min(first, s.first), last = std::max(last, s.second);
     if (first > last) continue;  // the whole zone slips
-    // A stick zone reaching a zone's end (a complete contact whose corners stick) leaves no slip zone there.
-    for (const double width : {first - z.left.x, z.right.x - last})
-      if (width > 0.0) narrowest = std::min(narrowest, width);
+    // A stick zone reaching a zone's end at a corner of the pad (a complete contact whose corners stick) leaves no
+    // slip zone there. At an incomplete end, where the pressure falls to zero, a slip zone lies whatever Q (Mindlin):
+    // one that does not show is narrower than a cell.
+    const std::pair<double, bool> ends[] = {{first - z.left.x, z.left.method == EdgeMethod::corner},
+                                            {z.right.x - last, z.right.method == EdgeMethod::corner}};
+    for (const auto& [width, corner] : ends)
+      if (width > 0.0 || !corner) narrowest = std::min(narrowest, std::max(width, 0.0));
   }
-  if (narrowest < kMinSlipCells * h)
+  if (narrowest <= 0.0)
+    out.push_back({"slip_zone_under_resolved",
+                   fmt::format("a stick zone reaches the contact's edge: its slip zone is narrower than a cell of "
+                               "{:.4g} m (Q far below f P), so the slip, the dissipated energy and the slip range "
+                               "there are below what the grid resolves, and are reported as 0; more grid.cells show "
+                               "them once a cell is narrower than the slip zone",
+                               h)});
+  else if (narrowest < kMinSlipCells * h)
     out.push_back({"slip_zone_under_resolved",
                    fmt::format("the narrowest slip zone spans {:.3g} cell(s) of {:.4g} m; at least {} resolve the slip "
                                "and the dissipated energy: {}",

@@ -43,6 +43,29 @@ TEST_CASE("a contact over two cells of a given window warns: under-resolved, and
   CHECK(codes.count("closed_form_missed") == 1);
 }
 
+// Q/fP = 1e-9: Mindlin's slip zone, a(1 − √(1 − Q/fP)) = 5e-10 a, is far narrower than a cell, and the stick zone
+// reaches the contact's edges. The analogy's slip at the edge, interpolated between the cell centres straddling it,
+// read the gap one cell beyond the contact: cycle.slip_max was up to 1e-10 m, ten orders above Mindlin's, with the
+// energy 0 and no warning (9.5e-11 m on 512 cells).
+TEST_CASE("a slip zone narrower than a cell reports no slip and warns that it is not resolved") {
+  Scratch scratch{"subcell"};
+  write_file(scratch.path / "s.json", "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
+    "friction": 0.5, "load": {"P": 1e5, "Q": {"ratio": 1e-9}}, "grid": {"cells": 512},
+    "effects": {"tangential": {}}})");
+  const Outcome o = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(o.all());
+  REQUIRE(o.status == 0);
+  const auto summary = nlohmann::json::parse(read_file(scratch.path / "output" / "s" / "summary.json"));
+  CHECK(summary["cycle"]["route"] == "analogy");
+  CHECK(summary["cycle"]["slip_max"].get<double>() == 0.0);
+  CHECK(summary["cycle"]["dissipated_energy"].get<double>() == 0.0);
+  bool warned = false;
+  for (const auto& w : summary["warnings"])
+    warned = warned || (w["code"] == "slip_zone_under_resolved" &&
+                        w["message"].get<std::string>().find("a stick zone reaches the contact's edge") == 0);
+  CHECK(warned);
+}
+
 TEST_CASE("a resolved contact has no warning") {
   CHECK(warning_codes("{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
     "load": {"P": 1e5}, "grid": {"cells": 256}})").empty());

@@ -536,7 +536,7 @@ TEST_CASE("output.dir refused when its name with the staging suffix passes the f
                  wear_longest);
 }
 
-TEST_CASE("results that cannot be written (a full disk) exit 2, keep nothing of the run and leave the earlier results") {
+TEST_CASE("results that cannot be written (a full disk) exit 2, keep nothing of the run, leave the earlier ones") {
   // A file size limit stands in for a full disk: past it a write fails (EFBIG), as on a full one (ENOSPC), once
   // SIGXFSZ, which would end the process first, is ignored (an ignored signal stays so across exec).
   Scratch s;
@@ -551,8 +551,9 @@ TEST_CASE("results that cannot be written (a full disk) exit 2, keep nothing of 
       {"/bin/sh", "-c", "ulimit -f 8 && trap '' XFSZ && exec \"$@\"", "sh", FRETWEAR_EXE, "run", "s.json"}};
   const Outcome r = fretwear::test::run_program(limited, s.work);
   CHECK_MESSAGE(r.exited(kInvalid), r.describe());
-  CHECK_MESSAGE(r.err.find("fretwear: the results cannot be written:\n  output.dir: cannot write ") != std::string::npos,
-                r.describe());
+  CHECK_MESSAGE(
+      r.err.find("fretwear: the results cannot be written:\n  output.dir: cannot write ") != std::string::npos,
+      r.describe());
   CHECK_MESSAGE(r.err.find("(File too large); nothing of this run is kept and the folder is as it was") !=
                     std::string::npos,
                 r.describe());

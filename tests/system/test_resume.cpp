@@ -388,8 +388,8 @@ namespace {
 // a full disk, once SIGXFSZ is ignored (it stays so across exec).
 Outcome with_file_limit(const Scratch& s, int blocks, const std::vector<std::string>& args,
                         const fretwear::test::Env& env = {}) {
-  fretwear::test::Command limited{{"/bin/sh", "-c", "ulimit -f " + std::to_string(blocks) + " && trap '' XFSZ && exec \"$@\"",
-                                   "sh", FRETWEAR_EXE}};
+  const std::string limit = "ulimit -f " + std::to_string(blocks) + " && trap '' XFSZ && exec \"$@\"";
+  fretwear::test::Command limited{{"/bin/sh", "-c", limit, "sh", FRETWEAR_EXE}};
   limited.words.insert(limited.words.end(), args.begin(), args.end());
   return fretwear::test::run_program(limited, s.work, env);
 }

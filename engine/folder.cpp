@@ -502,9 +502,8 @@ fs::path output_folder(const Scene& scene, OutputCommand command) {
   return command == OutputCommand::run ? scene.output_dir : scene.output_dir / subfolder(command);
 }
 
-std::vector<std::string> output_dir_problems(const Scene& scene, const fs::path& scene_file, OutputCommand command) {
+std::vector<std::string> output_dir_problems(const fs::path& dir, const fs::path& scene_file, OutputCommand command) {
   std::vector<std::string> problems;
-  const fs::path& dir = scene.output_dir;
   // The folder's path is written into summary.json and the report, which hold UTF-8 text only (a Python caller can
   // give any bytes).
   if (!utf8_text(dir.string())) {
@@ -612,7 +611,7 @@ void OutputFolder::discard() {
     fs::remove(*p, ec);                                    // only when empty
   }
   made_parents_.clear();
-  kept_ = true;  // nothing left to remove, nor to write into
+  staged_ = false;  // nothing left to remove
 }
 
 fs::path OutputFolder::path(const std::string& file) const {
@@ -630,9 +629,9 @@ void OutputFolder::write(const std::string& file, const std::string& content) co
   if (!out) {  // a full disk, a quota, a file size limit: the staging folder goes with this object, uncommitted
     const std::string why = errno != 0 ? std::strerror(errno) : "the write failed";
     throw ResultsNotWritten("the results cannot be written",
-                     {fmt::format("output.dir: cannot write {} into \"{}\" ({}); nothing of this run is kept and "
-                                  "the folder is as it was: free some space, or give another output.dir",
-                                  file, dir_.string(), why)});
+                            {fmt::format("output.dir: cannot write {} into \"{}\" ({}); nothing of this run is kept "
+                                         "and the folder is as it was: free some space, or give another output.dir",
+                                         file, dir_.string(), why)});
   }
 }
 

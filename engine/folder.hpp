@@ -69,8 +69,13 @@ std::filesystem::path output_folder(const Scene& scene, OutputCommand command);
 // empty, without kOutputMarker; the folder the command replaces (output_folder()) when it holds an entry fretwear
 // did not write (foreign_entries(), a run's folder without the subfolders it carries over), each such entry named;
 // a folder whose parent (where the staging folder is made) cannot be written. Each problem names output.dir.
-std::vector<std::string> output_dir_problems(const Scene& scene, const std::filesystem::path& scene_file,
+std::vector<std::string> output_dir_problems(const std::filesystem::path& dir, const std::filesystem::path& scene_file,
                                              OutputCommand command);
+// The same for the scene's output.dir.
+inline std::vector<std::string> output_dir_problems(const Scene& scene, const std::filesystem::path& scene_file,
+                                                    OutputCommand command) {
+  return output_dir_problems(scene.output_dir, scene_file, command);
+}
 
 // The names fretwear gives its staging folders beside a target `<name>`: `<name>.partial-<pid>` while a command
 // writes, `<name>.old-<pid>` while it replaces. A process id has at most kPidDigits digits (Linux: pid_max <= 2^22).

@@ -266,10 +266,8 @@ Scene load_scene_for(const std::filesystem::path& scene_file, OutputCommand comm
     return load_scene(scene_file);
   } catch (const SceneError& e) {
     if (!e.output_dir) throw;
-    Scene folder;  // output_dir_problems() reads the folder alone
-    folder.output_dir = *e.output_dir;
     std::vector<std::string> problems = e.problems();
-    const std::vector<std::string> more = output_dir_problems(folder, scene_file, command);
+    const std::vector<std::string> more = output_dir_problems(*e.output_dir, scene_file, command);
     if (more.empty()) throw;
     problems.insert(problems.end(), more.begin(), more.end());
     throw SceneError(std::move(problems));

@@ -90,9 +90,7 @@ std::string quoted(const fs::path& path) {
 [[noreturn]] void raise_with_folder(std::vector<std::string> problems, const fs::path& scene_file,
                                     const std::optional<fs::path>& output) {
   if (output) {
-    Scene folder;  // output_dir_problems() reads the folder alone
-    folder.output_dir = *output;
-    const std::vector<std::string> more = output_dir_problems(folder, scene_file, OutputCommand::run);
+    const std::vector<std::string> more = output_dir_problems(*output, scene_file, OutputCommand::run);
     problems.insert(problems.end(), more.begin(), more.end());
   }
   raise_scene_error(problems);

@@ -145,6 +145,15 @@ class Scratch {
   Outcome fretwear(const std::vector<std::string>& args, const Env& env = {}, double time_limit = kTimeLimit) const {
     return test::run_program(work, args, env, time_limit);
   }
+  // Runs the program in the working folder with files limited to `blocks` blocks of the shell's ulimit -f: past it
+  // a write fails (EFBIG), as on a full disk (ENOSPC), once SIGXFSZ, which would end the process first, is ignored
+  // (an ignored signal stays so across exec).
+  Outcome fretwear_file_limited(int blocks, const std::vector<std::string>& args, const Env& env = {}) const {
+    const std::string limit = "ulimit -f " + std::to_string(blocks) + " && trap '' XFSZ && exec \"$@\"";
+    test::Command limited{{"/bin/sh", "-c", limit, "sh", FRETWEAR_EXE}};
+    limited.words.insert(limited.words.end(), args.begin(), args.end());
+    return test::run_program(limited, work, env, kTimeLimit);
+  }
   // Starts the program in the working folder: wait() for it.
   Child start(const std::vector<std::string>& args, const Env& env = {}, double time_limit = kTimeLimit) const {
     return Child(work, args, env, time_limit);

@@ -537,8 +537,7 @@ TEST_CASE("output.dir refused when its name with the staging suffix passes the f
 }
 
 TEST_CASE("results that cannot be written (a full disk) exit 2, keep nothing of the run, leave the earlier ones") {
-  // A file size limit stands in for a full disk: past it a write fails (EFBIG), as on a full one (ENOSPC), once
-  // SIGXFSZ, which would end the process first, is ignored (an ignored signal stays so across exec).
+  // A file size limit stands in for a full disk (Scratch::fretwear_file_limited).
   Scratch s;
   json scene = base_scene();
   scene["output"] = {{"plots", false}};
@@ -547,9 +546,7 @@ TEST_CASE("results that cannot be written (a full disk) exit 2, keep nothing of 
   scene["grid"]["cells"] = 512;
   s.write("s.json", scene.dump());
   const Snapshot before = s.snapshot();
-  const fretwear::test::Command limited{
-      {"/bin/sh", "-c", "ulimit -f 8 && trap '' XFSZ && exec \"$@\"", "sh", FRETWEAR_EXE, "run", "s.json"}};
-  const Outcome r = fretwear::test::run_program(limited, s.work);
+  const Outcome r = s.fretwear_file_limited(8, {"run", "s.json"});
   CHECK_MESSAGE(r.exited(kInvalid), r.describe());
   CHECK_MESSAGE(
       r.err.find("fretwear: the results cannot be written:\n  output.dir: cannot write ") != std::string::npos,
@@ -668,6 +665,25 @@ TEST_CASE("a rerun refuses to remove the user's files in its results folder, nam
 TEST_CASE("output.dir refused when fretwear's folder holds entries it did not write, of either marker format") {
   const auto earlier_run = [](const Scratch& s) { run_before(s, "s.json", scene_text(Setup{})); };
   const auto first_format = [](const Scratch& s) { s.write("output/h/.fretwear", kFirstFormatMarker); };
+  // The earlier run's `entry` in output/h, replaced by what `by` makes at its path.
+  using Make = std::function<void(const Scratch&, const fs::path&)>;
+  const auto replaced = [=](const std::string& entry, const Make& by) {
+    return [=](const Scratch& s) {
+      earlier_run(s);
+      by(s, s.work / "output" / "h" / entry);
+      return Setup{};
+    };
+  };
+  const Make by_pipe = [](const Scratch&, const fs::path& p) {
+    fs::remove(p);
+    REQUIRE(::mkfifo(p.c_str(), 0600) == 0);
+  };
+  const Make by_link_to_copy = [](const Scratch& s, const fs::path& p) {
+    const std::string copy = p.filename().string() + ".copy";
+    fs::copy_file(p, s.work / copy);
+    fs::remove(p);
+    fs::create_symlink("../../" + copy, p);
+  };
   const std::vector<FolderCase> cases = {
       {"a file of the user's added",
        [=](const Scratch& s) {
@@ -723,45 +739,14 @@ TEST_CASE("output.dir refused when fretwear's folder holds entries it did not wr
        },
        "run", "summary.json (changed since fretwear wrote it)"},
       {"a file fretwear wrote, replaced by a link to a copy of it (the same bytes, the same checksum)",
-       [=](const Scratch& s) {
-         earlier_run(s);
-         const fs::path summary = s.work / "output" / "h" / "summary.json";
-         fs::copy_file(summary, s.work / "kept.json");
-         fs::remove(summary);
-         fs::create_symlink("../../kept.json", summary);
-         return Setup{};
-       },
-       "run", "summary.json (a link)"},
+       replaced("summary.json", by_link_to_copy), "run", "summary.json (a link)"},
       // fretwear writes regular files only, and never opens a pipe: opening one to read waits for a writer, and the
       // check of the folder waited for ever.
-      {"a file fretwear wrote, replaced by a named pipe",
-       [=](const Scratch& s) {
-         earlier_run(s);
-         const fs::path summary = s.work / "output" / "h" / "summary.json";
-         fs::remove(summary);
-         REQUIRE(::mkfifo(summary.c_str(), 0600) == 0);
-         return Setup{};
-       },
-       "run", "summary.json (not a regular file)"},
-      {"its marker replaced by a named pipe",
-       [=](const Scratch& s) {
-         earlier_run(s);
-         const fs::path marker = s.work / "output" / "h" / ".fretwear";
-         fs::remove(marker);
-         REQUIRE(::mkfifo(marker.c_str(), 0600) == 0);
-         return Setup{};
-       },
-       "run", "no .fretwear marker"},
-      {"its marker replaced by a link to a copy of it",
-       [=](const Scratch& s) {
-         earlier_run(s);
-         const fs::path marker = s.work / "output" / "h" / ".fretwear";
-         fs::copy_file(marker, s.work / "marker.json");
-         fs::remove(marker);
-         fs::create_symlink("../../marker.json", marker);
-         return Setup{};
-       },
-       "run", "no .fretwear marker"},
+      {"a file fretwear wrote, replaced by a named pipe", replaced("summary.json", by_pipe), "run",
+       "summary.json (not a regular file)"},
+      {"its marker replaced by a named pipe", replaced(".fretwear", by_pipe), "run", "no .fretwear marker"},
+      {"its marker replaced by a link to a copy of it", replaced(".fretwear", by_link_to_copy), "run",
+       "no .fretwear marker"},
       {"a run folder a convergence study made, a file of the user's added",
        [](const Scratch& s) {
          s.write("s.json", scene_text(Setup{}));

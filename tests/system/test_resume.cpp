@@ -382,20 +382,6 @@ TEST_CASE("--resume refuses a re-signed checkpoint whose lagged coupling or body
   }
 }
 
-namespace {
-
-// fretwear ARGS with files limited to `blocks` blocks of the shell's ulimit -f: past it a write fails (EFBIG), as on
-// a full disk, once SIGXFSZ is ignored (it stays so across exec).
-Outcome with_file_limit(const Scratch& s, int blocks, const std::vector<std::string>& args,
-                        const fretwear::test::Env& env = {}) {
-  const std::string limit = "ulimit -f " + std::to_string(blocks) + " && trap '' XFSZ && exec \"$@\"";
-  fretwear::test::Command limited{{"/bin/sh", "-c", limit, "sh", FRETWEAR_EXE}};
-  limited.words.insert(limited.words.end(), args.begin(), args.end());
-  return fretwear::test::run_program(limited, s.work, env);
-}
-
-}  // namespace
-
 // A checkpoint is insurance: one that cannot be written (a full disk) leaves the last one written, and the run goes
 // on; before, the run ended there as an internal error. Results that cannot be written then keep that checkpoint
 // (free some space and --resume), or, with none written, leave nothing at all.
@@ -404,7 +390,7 @@ TEST_CASE("a wear run on a full disk goes on past a checkpoint it cannot write, 
   s.write("s.json", scene());
   const fs::path checkpoint = s.work / "out" / "resume.checkpoint";
   // Room for the first checkpoint (cycle 0), not the later ones, nor the results.
-  const Outcome full = with_file_limit(s, 60, {"run", "s.json", "-q"});
+  const Outcome full = s.fretwear_file_limited(60, {"run", "s.json", "-q"});
   CHECK_MESSAGE(full.exited(kInvalid), full.describe());
   CHECK(full.err.find("internal error") == std::string::npos);
   CHECK_MESSAGE(full.err.find("fretwear: the results cannot be written:\n  output.dir: cannot write ") !=
@@ -421,7 +407,7 @@ TEST_CASE("a wear run on a full disk goes on past a checkpoint it cannot write, 
   CHECK(!fs::exists(checkpoint));
   // Room for nothing: no checkpoint, no results, and not the folder made for them.
   fs::remove_all(s.work / "out");
-  const Outcome none = with_file_limit(s, 8, {"run", "s.json", "-q"});
+  const Outcome none = s.fretwear_file_limited(8, {"run", "s.json", "-q"});
   CHECK_MESSAGE(none.exited(kInvalid), none.describe());
   CHECK(none.err.find("fretwear: the results cannot be written:") != std::string::npos);
   CHECK(none.err.find("checkpoint") == std::string::npos);
@@ -435,7 +421,7 @@ TEST_CASE("a wear run on a full disk goes on past a checkpoint it cannot write, 
   dissimilar.replace(dissimilar.find(both), both.size(),
                      R"("materials": {"pad": {"E": 2e11, "nu": 0.3}, "specimen": {"E": 7.1e10, "nu": 0.33}})");
   s.write("s.json", dissimilar);
-  const Outcome stopped = with_file_limit(s, 60, {"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "5"}});
+  const Outcome stopped = s.fretwear_file_limited(60, {"run", "s.json", "-q"}, {{"FRETWEAR_STOP_AT_STEP", "5"}});
   CHECK_MESSAGE(stopped.exited(kInterrupted), stopped.describe());
   CHECK_MESSAGE(stopped.err.find("continue with: fretwear run --resume s.json (but the checkpoint of this stop could "
                                  "not be written: cannot write the checkpoint ") != std::string::npos,

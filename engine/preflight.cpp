@@ -153,8 +153,49 @@ void check_gross_slip_window(const Scene& scene, const Model& model, const Cycle
   check_sliding_window(model, {0.0, e.area_rate, scene.wear->cycles, U, ""}, problems, preflight);
 }
 
-// Under load.blocks, each block that slides, in order: its own cycle and first rate on the unworn contact, after the
-// area the sliding blocks before it wear at theirs. Blocks in partial slip wear towards a limit and are left out
+// One cycle's wear against the contact's elastic depth: the cycle-averaged wear model holds the contact fixed
+// through a cycle and wears it between cycles (paper 002, §3), which needs a cycle's wear to move the pressure
+// little. A smooth change δw of the worn profile over a contact of width W moves its pressure by about E* δw / (W/2),
+// so the ratio of the first cycle's mean wear depth (c ∫ p s dx) / W to the contact's elastic depth
+// (W/2) p_mean / E* = P / (2 E*) is the fraction of the pressure one cycle's wear changes. Past kMaxWearPerCycle the
+// contact would be reshaped within one cycle (the wear run would reach its limit, or wear flat, in a fraction of a
+// cycle): refused, naming the coefficient; past kWarnWearPerCycle, the warning wear_per_cycle. The mean over the
+// whole contact is the lenient measure (partial slip concentrates the wear in the slip zones), so a refused scene is
+// beyond doubt.
+void check_wear_per_cycle(const Scene& scene, const Model& model, const NormalResult& normal, const WearEstimate& e,
+                          const std::string& block, std::vector<std::string>& problems, Preflight* preflight) {
+  double width = 0.0, P = 0.0;
+  for (const Zone& z : normal.zones) width += z.right.x - z.left.x;
+  for (double p : normal.state.p) P += p * normal.grid.h();  // the normal contact's load (a history's at its start)
+  if (!(width > 0.0) || !(P > 0.0) || !(e.area_rate > 0.0)) return;
+  const double depth = e.area_rate / width, elastic = P / (2.0 * model.pair.E_star()), ratio = depth / elastic;
+  const WearEffect& effect = *scene.wear;
+  const double c = wear::WearLaw{effect.law, effect.coefficient, *scene.friction}.rate_coefficient();
+  const std::string worn =
+      fmt::format("one cycle{} wears the contact {:.3g} m deep on average (c ∫ p s dx / width, c = {:.3g} 1/Pa), "
+                  "{:.3g} times its elastic depth P / (2 E*) = {:.3g} m",
+                  block, depth, c, ratio, elastic);
+  if (ratio <= kWarnWearPerCycle) return;
+  if (ratio <= kMaxWearPerCycle) {
+    if (preflight)
+      preflight->warnings.push_back(
+          {"wear_per_cycle", worn + ": the pressure moves by about that fraction within a cycle, which the "
+                             "cycle-averaged wear model holds fixed, so the first cycles' wear is approximate"});
+    return;
+  }
+  const std::string coefficient = effect.law == wear::Law::archard ? "k" : "alpha";
+  const std::string key = effect.per_body ? fmt::format("effects.wear.{0}_pad and {0}_specimen", coefficient)
+                                          : "effects.wear." + coefficient;
+  problems.push_back(fmt::format(
+      "{}: {}: the contact would be reshaped within a single cycle, and the cycle-averaged wear model (the contact "
+      "held through a cycle, worn between cycles) needs a cycle's wear to be small beside that depth. Is the "
+      "coefficient in 1/Pa? (measured ones are about 1e-20 to 1e-12 1/Pa)",
+      key, worn));
+}
+
+// Under load.blocks, each block, in order: its own cycle and first rate on the unworn contact, checked as the scene's
+// first cycle is (check_wear_per_cycle); and each block that slides, after the area the sliding blocks before it
+// wear at theirs. Blocks in partial slip wear towards a limit and are left out
 // (the check may then pass a window they narrow; the run says so when the scar reaches the window's end).
 void check_blocks_window(const Scene& scene, const Model& model, const NormalResult& normal,
                          std::vector<std::string>& problems, Preflight* preflight) {
@@ -163,9 +204,14 @@ void check_blocks_window(const Scene& scene, const Model& model, const NormalRes
     const LoadBlock& block = scene.blocks[b];
     const Scene one = block_scene(scene, block);
     const CycleStage cycle = solve_cycle(one, model, normal);
-    if (cycle.result.regime != Regime::gross_slip || cycle.result.slip_travelled.empty()) continue;
-    const WearEstimate e = estimate_wear(one, model, cycle);
-    if (!(e.area_rate > 0.0)) continue;
+    if (cycle.result.slip_travelled.empty()) continue;
+    const WearEstimate e = estimate_wear(one, model, cycle, /*timed=*/false);
+    if (b > 0) {  // the first block's cycle is the scene's, checked already
+      const std::size_t before = problems.size();
+      check_wear_per_cycle(one, model, normal, e, fmt::format(" of load.blocks[{}]", b), problems, preflight);
+      if (problems.size() > before) return;
+    }
+    if (cycle.result.regime != Regime::gross_slip || !(e.area_rate > 0.0)) continue;
     const double U = bodies_in_own_frames(one, model, cycle) ? cycle.result.sliding_amplitude : 0.0;
     const std::size_t before = problems.size();
     check_sliding_window(model, {area, e.area_rate, block.cycles, U, fmt::format(" (load.blocks[{}])", b)}, problems,
@@ -180,6 +226,10 @@ void check_wear(const Scene& scene, const Setup& setup, const NormalResult& norm
                 std::vector<std::string>& problems, Preflight* preflight) {
   const WearEffect& effect = *scene.wear;
   const WearEstimate e = estimate_wear(scene, setup.model, cycle);
+  const std::size_t before = problems.size();
+  check_wear_per_cycle(scene, setup.model, normal, e, scene.blocks.empty() ? "" : " of load.blocks[0]", problems,
+                       preflight);
+  if (problems.size() > before) return;  // the window and the cost follow from a rate that is not the model's
   check_gross_slip_window(scene, setup.model, cycle, e, problems, preflight);
   if (!scene.blocks.empty()) check_blocks_window(scene, setup.model, normal, problems, preflight);
   if (effect.stepper == WearStepper::cycle_by_cycle) {

@@ -2,7 +2,8 @@
 // `validate` passes is not refused by `run` (docs/SCENES.md, "Output folders" and "Warnings"): the output folder;
 // the window and the contact (a contact the given window clips, a window in which no cell can touch, the load–size
 // integral of the default window); the strains linear elasticity allows; the route the cycle needs; the first wear
-// cycle (a regime the wear stage cannot follow); and the wear run's time, refused past a day.
+// cycle (a regime the wear stage cannot follow, a cycle that wears the contact past its elastic depth); and the wear
+// run's time, refused past a day.
 #pragma once
 
 #include <filesystem>
@@ -20,6 +21,11 @@ namespace fretwear {
 // The largest mean contact strain p_mean / E* accepted: half-plane linear elasticity needs strains well below one
 // (a contact small against the radii of the bodies: for Hertz p_mean / E* = π a / (8 R)).
 inline constexpr double kMaxContactStrain = 0.05;
+// The largest first-cycle wear accepted, as a fraction of the contact's elastic depth P / (2 E*) (mean depth worn
+// in one cycle over it; check_wear_per_cycle in preflight.cpp): past it the contact is reshaped within a cycle.
+inline constexpr double kMaxWearPerCycle = 1.0;
+// Past this fraction the run goes ahead with the warning wear_per_cycle (the examples: at most 0.015).
+inline constexpr double kWarnWearPerCycle = 0.1;
 // Wear runs estimated to take longer than this (s) are refused, naming the stepper and what to use instead.
 inline constexpr double kMaxRunSeconds = 86400.0;
 
@@ -33,7 +39,7 @@ struct SolvedStages {
 };
 
 struct Preflight {
-  std::vector<Warning> warnings;  // a wear run estimated past kLongRunSeconds
+  std::vector<Warning> warnings;  // long_run, window_reached, wear_per_cycle
   double wear_seconds = 0.0;      // estimated wall time of the wear stage (s); 0 when short or not estimated
   double stress_seconds = 0.0;    // of the stress stage's maps, from a column timed (s); 0 without stress maps
   SolvedStages solved;            // empty when a check failed or a solve did not converge

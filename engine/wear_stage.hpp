@@ -183,7 +183,8 @@ struct WearEstimate {
   double area_rate = 0.0;             // the worn area per cycle at the first cycle, c ∫ p s dx (m²/cycle)
   double seconds() const { return responses * seconds_per_response; }
 };
-WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleStage& cycle);
+// timed = false: the rates alone, without timing the responses (seconds_per_response stays infinite).
+WearEstimate estimate_wear(const Scene& scene, const Model& model, const CycleStage& cycle, bool timed = true);
 // Why the stepper "cycle_by_cycle" cannot run at this explicit stability limit (cycles): a jump of one cycle past it
 // is unstable. Empty when it can (or nothing slips: limit 0).
 std::string cycle_by_cycle_problem(double stability_limit);

@@ -408,7 +408,8 @@ py::list validate(py::handle scene_arg, py::handle output_arg) {
     if (output) arg.scene.output_dir = *output;
     Preflight checked;
     problems = problems_before_solving(arg.scene, arg.scene_file, output.has_value(), &checked);
-    if (problems.empty()) warn(checked.warnings);  // as `fretwear validate` prints them (long_run, window_reached)
+    // As `fretwear validate` prints them (long_run, window_reached, wear_per_cycle).
+    if (problems.empty()) warn(checked.warnings);
   } catch (py::error_already_set& e) {
     if (!e.matches(g_scene_error)) throw;
     return e.value().attr("problems");

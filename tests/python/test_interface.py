@@ -134,6 +134,18 @@ def test_the_physics_checks_before_solving_are_the_command_lines():
         fretwear.run(scene)
 
 
+def test_a_wear_coefficient_that_reshapes_the_contact_in_a_cycle_is_refused_and_a_tenth_of_it_warns():
+    # The Hertz wear case, whose first cycle wears 16.8 times k / 1e-6 of the contact's elastic depth P / (2 E*).
+    scene = example("hertz_wear", **{"grid.cells": 256, "effects.wear.cycles": 1e3, "effects.wear.k": 1e-6})
+    problems = fretwear.validate(scene)
+    assert len(problems) == 1 and problems[0].startswith("effects.wear.k: one cycle wears the contact")
+    with pytest.raises(fretwear.SceneError):
+        fretwear.run(scene)
+    scene["effects"]["wear"]["k"] = 1e-8
+    with pytest.warns(fretwear.FretwearWarning, match=r"^wear_per_cycle: one cycle wears the contact"):
+        assert fretwear.validate(scene) == []
+
+
 def test_a_solve_stopped_short_raises_convergence_error_with_its_residual(in_empty_folder, monkeypatch):
     # The test hook FRETWEAR_NORMAL_MAX_ITERATIONS caps the normal solve at two iterations, as the command line's
     # test of exit status 3 does; no real scene fails to converge on demand.

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -217,6 +220,48 @@ TEST_CASE("a slip or stick zone narrower than the grid resolves warns, and so do
   CHECK(warning_codes("{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
     "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 1024},
     "effects": {"wear": {"k": 1e-12, "cycles": 1e3}}, "output": {"plots": false}})").empty());
+}
+
+// A wear coefficient in mm³/(N m) or a typing slip: k = 1e-6 1/Pa on the Hertz wear case stopped as unconverged
+// (exit 3, the stepper's jump under 1e-6 cycles at cycle 0) and k = 1e-3 completed at the asymptote in 21 steps,
+// both with a contact that one cycle wears 17 and 1.7e4 times its elastic depth P / (2 E*). Refused by validate
+// and run, naming the coefficient, nothing written; past a tenth of that depth the run warns.
+TEST_CASE("a wear coefficient that reshapes the contact within one cycle is refused, and a tenth of it warns") {
+  auto hertz = [](const std::string& wear) {
+    return "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+      "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 512}, "output": {"plots": false},
+      "effects": {"wear": {)" + wear + R"(, "cycles": 1e5}}})";
+  };
+  Scratch scratch{"coefficient"};
+  // The ratio is 16.8 times k / 1e-6 here (c ∫ p s dx over the width, against P / (2 E*) = 4.55e-7 m).
+  const std::vector<std::pair<std::string, std::string>> refused{
+      {R"("k": 1e-6)", "effects.wear.k: one cycle wears the contact 7.6"},
+      {R"("k": 1e-3)", "effects.wear.k: one cycle wears the contact 0.007"},
+      {R"("k": 1e-7)", "times its elastic depth P / (2 E*) = 4.5"},
+      {R"("law": "energy", "alpha": 2e-7)", "effects.wear.alpha: one cycle wears the contact 7.6"},
+      {R"("k_pad": 0.5e-6, "k_specimen": 0.5e-6)", "effects.wear.k_pad and k_specimen: one cycle wears"}};
+  for (const auto& [wear, expected] : refused)
+    for (const char* command : {"validate", "run"}) {
+      write_file(scratch.path / "s.json", hertz(wear));
+      const Outcome o = run_program(scratch.path, {command, "s.json"});
+      CAPTURE(o.all());
+      CHECK(o.status == 2);
+      CHECK(o.err.find(expected) != std::string::npos);
+      CHECK(o.err.find("reshaped within a single cycle") != std::string::npos);
+      CHECK(snapshot(scratch.path).size() == 1);
+    }
+  // 0.168 of the elastic depth: the run goes ahead with the warning; 0.0168: without it.
+  CHECK(warning_codes(hertz(R"("k": 1e-8)")).count("wear_per_cycle") == 1);
+  CHECK(warning_codes(hertz(R"("k": 1e-9)")).count("wear_per_cycle") == 0);
+  // Under load.blocks each block's first cycle is checked: Q/fP = 0.3 is within the bound, 0.95 is not.
+  write_file(scratch.path / "s.json", "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01},
+    "friction": 0.5, "grid": {"cells": 512}, "output": {"plots": false},
+    "effects": {"wear": {"k": 2e-8, "cycles": 200}},
+    "load": {"P": 1e5, "blocks": [{"Q": {"ratio": 0.3}, "cycles": 100}, {"Q": {"ratio": 0.95}, "cycles": 100}]}})");
+  const Outcome o = run_program(scratch.path, {"validate", "s.json"});
+  CAPTURE(o.all());
+  CHECK(o.status == 2);
+  CHECK(o.err.find("effects.wear.k: one cycle of load.blocks[1] wears the contact") != std::string::npos);
 }
 
 TEST_CASE("a gross-slip wear run whose contact would reach the window's end is refused before it starts") {

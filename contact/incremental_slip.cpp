@@ -1106,9 +1106,14 @@ SolveSummary IncrementalSlipSolver::Run::coupled_increment(double P, double f, c
       throw ConvergenceError(fmt::format(
           "incremental slip: {} (Q from {:.6g} to {:.6g} N/m): the coupled normal and tangential solves of "
           "dissimilar bodies (beta = {:.4g}) still change the traction by {:.3g} of the peak pressure after {} "
-          "sweeps (coupling tolerance {:.3g})",
+          "sweeps (coupling tolerance {:.3g}){}",
           where(cycle, k), inc.Q_prev, inc.Q, coupling_->beta, change / *std::max_element(p.begin(), p.end()),
-          options_.max_coupling_sweeps, options_.coupling_tolerance));
+          options_.max_coupling_sweeps, options_.coupling_tolerance,
+          f * std::abs(coupling_->beta) >= kSweepsSlowBeyond
+              ? fmt::format(": a sweep contracts the change by about f |beta| = {:.3g}, and near 1 or above the "
+                            "sweeps do not settle (docs/METHODS.md, \"Known to fail\")",
+                            f * std::abs(coupling_->beta))
+              : ""));
     coupled_pressure(sweeps == 1 && !q_predicted.empty() ? q_predicted : trial.q, P, inc, p, cycle, k);
     const SolveSummary ts = coupled_traction(f, inc, p, p_prev, u_prev, lo, hi, trial);
     total.iterations += ts.iterations;

@@ -73,8 +73,11 @@
 // cells that leave the contact drop their traction, as under a load history. It stops when one sweep changes
 // neither traction by more than coupling_tolerance · max p_k:
 //     max( max_i |p_k − p_{k−1}|, max_i |q_k − q_{k−1}| ) ≤ coupling_tolerance · max_i p_k,
-// and throws ConvergenceError naming the increment after max_coupling_sweeps. One sweep contracts the error by
-// roughly β² (the coupling enters each half once), so a few sweeps suffice for |β| ≤ 0.3. The change of the first
+// and throws ConvergenceError naming the increment after max_coupling_sweeps. One sweep contracts the error by about
+// f |β| (measured 0.05 at f |β| = 0.055, docs/PERFORMANCE.md): the change is carried by the slipping cells' bounds
+// ±f p, which move with the pressure, more than by the elastic coupling alone (β², each half entering once). So a
+// few sweeps suffice for f |β| up to a few tenths; Hertz, steel on aluminium (β = −0.11), settles at f = 8 and does
+// not at f = 9 (f |β| = 0.99), and the error then says so past kSweepsSlowBeyond. The change of the first
 // sweeps is the increment's own (its load step moves q, and the new q moves p): with predict_increments (the default)
 // the first normal solve is given q_0 + r Δq_last and warm-started from p_0 + r Δp_last, the last increment's changes
 // scaled by r = ΔQ/ΔQ_last, when that increment had the same P and the same strain per unit Q and loaded in the same
@@ -137,6 +140,9 @@
 #include "contact/tangential_solver.hpp"
 
 namespace fretwear {
+
+// f |β| from which a coupled increment that did not settle names it as the reason (above).
+inline constexpr double kSweepsSlowBeyond = 0.5;
 
 struct IncrementalSlipOptions {
   int increments_per_cycle = 40;  // load steps over +Q → −Q → +Q (the first loading 0 → Q takes a quarter of

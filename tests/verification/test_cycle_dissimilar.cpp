@@ -472,3 +472,32 @@ TEST_CASE("dissimilar: the in-phase cycle as a load history is force control's c
   CHECK(c.result.regime == Regime::partial_slip);
   CHECK(c.result.dissipated_energy > 0.0);
 }
+
+// A sweep contracts the coupled increment's change by about f |β| (contact/incremental_slip.hpp): steel on
+// aluminium (β = −0.110) settles at f = 8 (f |β| = 0.88) with more sweeps than at f = 0.5, and at f = 9 (0.99) it
+// does not, and the error names f |β| as the reason.
+TEST_CASE("dissimilar: the coupled sweeps slow as f |beta| nears one, and the error then names it") {
+  constexpr Material kAluminium{71e9, 0.33};
+  auto at_friction = [&](double f) {
+    Scene s = dissimilar_cycle(kAluminium, 256);
+    s.friction = f;
+    return s;
+  };
+  const Run low = run(at_friction(0.5)), high = run(at_friction(8.0));
+  MESSAGE(fmt::format("f |beta| = {:.3f}: at most {} sweeps an increment; {:.3f}: {}", 0.5 * std::abs(low.beta),
+                      low.r.max_coupling_sweeps, 8.0 * std::abs(high.beta), high.r.max_coupling_sweeps));
+  CHECK(high.beta == test::rel(-0.1102, 1e-3));
+  CHECK(high.r.max_coupling_sweeps > 2 * low.r.max_coupling_sweeps);
+  CHECK_THROWS_WITH_AS(run(at_friction(9.0)),
+                       doctest::Contains("a sweep contracts the change by about f |beta| = 0.99"), ConvergenceError);
+  // Below kSweepsSlowBeyond the message does not blame f |beta|: the cap on the sweeps alone stops f = 0.5 at one.
+  IncrementalSlipOptions one;
+  one.max_coupling_sweeps = 1;
+  try {
+    run(at_friction(0.5), one);
+    FAIL("one sweep settled a coupled increment");
+  } catch (const ConvergenceError& e) {
+    CHECK(std::string(e.what()).find("after 1 sweeps") != std::string::npos);
+    CHECK(std::string(e.what()).find("f |beta|") == std::string::npos);
+  }
+}

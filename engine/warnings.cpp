@@ -255,7 +255,7 @@ void loop_energy(const Scene& scene, const NormalResult& n, const CycleStage& cy
 }
 
 // The Mindlin stick zone of a Hertz contact under force control (c/a = √(1 − Q/fP), shifted by a bulk stress;
-// PHYSICS.md, "Partial slip"), where it holds: similar bodies, one zone, in phase, partial slip.
+// PHYSICS.md, "Partial slip"), where it holds: similar bodies, one zone, in phase, partial slip, short of reverse slip.
 void mindlin_missed(const Scene& scene, const RunResult& r, std::vector<Warning>& out) {
   const NormalResult& n = r.normal;
   if (!r.cycle || !n.reference || n.reference->kind != "hertz" || scene.control != LoadControl::force ||
@@ -265,6 +265,9 @@ void mindlin_missed(const Scene& scene, const RunResult& r, std::vector<Warning>
   const ElasticPair pair(scene.pad, scene.specimen, scene.plane);
   const auto hz = closed_form::hertz(scene.P, pair.A(), scene.profile.R);
   const auto stick = closed_form::hertz_stick(hz, r.cycle->Q_max / (r.cycle->f * scene.P), r.cycle->f, scene.bulk_stress);
+  // Nowell and Hills' shifted zone holds short of reverse slip, |e| + c ≤ a; past it the bulk stress makes the
+  // leading edge slip backwards (or, resolved, leaves there a slip zone the closed form does not have).
+  if (std::abs(stick.centre) + stick.c > hz.a) return;
   const auto [left, right] = *r.cycle->result.stick_zone;
   const double centre = n.reference->centre + stick.centre;
   const double error = std::max(std::abs(left - (centre - stick.c)), std::abs(right - (centre + stick.c))) / hz.a;

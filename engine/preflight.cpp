@@ -123,11 +123,21 @@ void check_sliding_window(const Model& model, const SlidingWear& load, std::vect
   const Flat margin = flat_holding(model.profile, load.area_before + (1.0 + kFlatMargin) * load.rate * load.cycles,
                                    grid.h());
   if (margin.left - U > grid.x_min && margin.right + U < grid.x_max) return;  // with the margin it fits: so does `end`
+  const double x0 = model.profile.lowest_point();
+  const double half = 1.2 * (std::max(x0 - end.left, end.right - x0) + U);
+  if (x0 - U <= grid.x_min || x0 + U >= grid.x_max) {  // the scar alone spans past the window's end
+    problems.push_back(fmt::format(
+        "grid.window: in gross slip{} the pad slides {:.3g} m each way over the specimen, whose scar then spans "
+        "[{:.3g}, {:.3g}] m from the first cycle, past the window [{:.3g}, {:.3g}] m{}. Give grid.window as about "
+        "[{:.3g}, {:.3g}] m (the flat the {:.4g} cycles wear, the stroke each side, and 20 %)",
+        load.which, U, x0 - U, x0 + U, grid.x_min, grid.x_max,
+        model.window.method == "given" ? "" : " (fretwear's choice for the unworn contact)", x0 - half, x0 + half,
+        load.cycles));
+    return;
+  }
   // The cycles at which the flat (and U) reaches the nearer end of the window.
   const double d_window = std::min(model.profile.gap(grid.x_min + U), model.profile.gap(grid.x_max - U));
   const double reached = (flat_at(model.profile, d_window, grid.h()).area - load.area_before) / load.rate;
-  const double x0 = model.profile.lowest_point();
-  const double half = 1.2 * (std::max(x0 - end.left, end.right - x0) + U);
   const std::string scar =
       U > 0.0 ? fmt::format(" (with the specimen's scar, which spreads {:.3g} m further each side)", U) : "";
   const std::string what = fmt::format(

@@ -311,6 +311,26 @@ TEST_CASE("a gross-slip wear run whose contact would reach the window's end is r
   CHECK(warning_codes(scene("2.45e5", "[-0.6e-3, 0.6e-3]")).count("window_reached") == 1);
   // A stroke of 0.32 µm each way (δ = 1 µm, just past the stick limit of 0.68 µm) wears too slowly to get there.
   CHECK(warning_codes(scene("2e6", "[-0.6e-3, 0.6e-3]", "1e-6")).count("window_reached") == 0);
+  // A stroke wider than the window with both bodies wearing: the specimen's scar spans past it from the first cycle
+  // (δ = 1 mm slides the pad 0.999 mm each way), where the estimate put the end past the last cycle and only warned, and the run stopped
+  // at its first step. Refused naming grid.window; the window it names holds the run.
+  auto both_wear = [&scene](const std::string& window) {
+    std::string s = scene("100", window, "1e-3");
+    return s.replace(s.find(R"("pad_fraction": 1.0)"), 19, R"("pad_fraction": 0.5)");
+  };
+  write_file(scratch.path / "s.json", both_wear("[-0.6e-3, 0.6e-3]"));
+  const Outcome stroke = run_program(scratch.path, {"validate", "s.json"});
+  CAPTURE(stroke.all());
+  CHECK(stroke.status == 2);
+  CHECK(stroke.err.find("grid.window: in gross slip the pad slides 0.000999 m each way") != std::string::npos);
+  CHECK(stroke.err.find("fretwear's choice") == std::string::npos);  // the window is the scene's
+  const std::size_t given = stroke.err.find("Give grid.window as about [");
+  REQUIRE(given != std::string::npos);
+  write_file(scratch.path / "s.json",
+             both_wear(stroke.err.substr(given + 26, stroke.err.find(" m (", given) - given - 26)));
+  const Outcome held = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(held.all());
+  CHECK(held.status == 0);
   // Under load.blocks each sliding block is checked after the area the sliding blocks before it wear: two blocks of
   // 1.5e5 cycles each fit alone, and the second is refused (a partial-slip block before them, δ = 0.5 µm, wears
   // towards a limit and is left out).

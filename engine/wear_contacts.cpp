@@ -405,11 +405,15 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   if (own_reference) solve_worn(load_.P, normal_, "normal");
   solve_worn(P_ref_, ref, own_reference ? "normal (the history's largest P)" : "normal");
   if (ref.p.front() > 0.0 || ref.p.back() > 0.0)
-    throw InputError(fmt::format("grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the "
-                                 "contact widens as it wears (towards its limit in partial slip, without limit in "
-                                 "gross slip): widen grid.window, or wear fewer cycles",
-                                 ref.p.front() > 0.0 ? "left" : "right",
-                                 ref.p.front() > 0.0 ? grid.x_min : grid.x_max));
+    throw InputError(fmt::format(
+        "grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the contact widens as it wears "
+        "(towards its limit in partial slip, without limit in gross slip): {}, or wear fewer cycles",
+        ref.p.front() > 0.0 ? "left" : "right", ref.p.front() > 0.0 ? grid.x_min : grid.x_max,
+        model_.window.method == "given"
+            ? std::string("widen grid.window")
+            : fmt::format("this window, [{:.6g}, {:.6g}] m, is fretwear's choice, sized by the worn contact's limit "
+                          "where the cycle has one (not in gross or reverse slip): give grid.window wider than it",
+                          grid.x_min, grid.x_max)));
   // The worn gap g0 + w for the history's normal solves and the coupled ones (gap_ outlives the call).
   const NormalCoupling coupling{beta_, gap_};
   const IncrementalResult r = load_.history.empty() ? slip_.solve(normal_, load_, &datum_, &coupling)

@@ -360,6 +360,35 @@ TEST_CASE("a gross-slip wear run whose contact would reach the window's end is r
                         "end after about 2.35e+05") != std::string::npos);
 }
 
+// Two asperities in reverse slip under a bulk stress: the stand-ins that size the default window for wear have no
+// limit there, and the worn contact outgrows the window within the run, which stops with exit 2 and writes nothing.
+// The message said "widen grid.window" of a window the user never gave: it now says whose the window is, where it
+// lies and why it could not be sized; for a given window it says what it said.
+TEST_CASE("a worn contact that outgrows the window fretwear chose says whose window it is") {
+  Scratch scratch{"outgrown"};
+  auto scene = [](const std::string& grid) {
+    return R"({"name": "s", "materials": {"both": {"E": 193e9, "nu": 0.364}},
+      "profile": {"type": "envelope", "terms": [{"type": "cylinder", "R": 0.0122, "offset_x": -0.00067},
+                                                {"type": "cylinder", "R": 0.0277, "offset_x": 0.00067}]},
+      "friction": 0.64, "load": {"P": 146000, "Q": {"ratio": 0.43}, "bulk_stress": {"amplitude": -1.9e8}},
+      "effects": {"wear": {"k": 2.3e-12, "cycles": 1e4}}, "output": {"plots": false}, "grid": )" + grid + "}";
+  };
+  write_file(scratch.path / "s.json", scene(R"({"cells": 256})"));
+  const Outcome chosen = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(chosen.all());
+  CHECK(chosen.status == 2);
+  CHECK(chosen.err.find("grid.window: the worn contact reaches the window's right end") != std::string::npos);
+  CHECK(chosen.err.find("is fretwear's choice, sized by the worn contact's limit where the cycle has one (not in "
+                        "gross or reverse slip): give grid.window wider than it") != std::string::npos);
+  CHECK(snapshot(scratch.path).size() == 1);
+  write_file(scratch.path / "s.json", scene(R"({"cells": 256, "window": [-0.00082, 0.00091]})"));
+  const Outcome given = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(given.all());
+  CHECK(given.status == 2);
+  CHECK(given.err.find("without limit in gross slip): widen grid.window, or wear fewer cycles") != std::string::npos);
+  CHECK(given.err.find("fretwear's choice") == std::string::npos);
+}
+
 TEST_CASE("a crack on too few quadrature points warns, and so does one the check cannot reach") {
   // Hertz, Q/fP = 0.6, σ_bulk = 100 MPa, 256 cells, a crack normal to the surface at the trailing edge. On 10 points
   // its SIFs differ from those on 5 by 9 % of the largest (on 2, from those on 4 by 14 %: K_I 42 % from its value on

@@ -468,8 +468,9 @@ void edge_cusps(const Scene& scene, const RunResult& r, std::vector<Warning>& ou
                              list, names.size() == 1 ? "s" : "")});
 }
 
-// A worn profile that zigzags from cell to cell: three consecutive second differences of alternating sign, each
-// above kZigzagShare of the deepest wear (a step, however sharp, bends once: one change of sign). Found beside the
+// A worn profile that zigzags from cell to cell: four consecutive second differences of alternating sign, each
+// above kZigzagShare of the deepest wear (a step, however sharp, bends once: one change of sign; a worn zone one cell
+// wide, a slip zone the grid does not resolve, bends three times, and slip_zone_under_resolved names it). Found beside the
 // stick zone of contacts worn near the stick limit (dissimilar bodies at Q/fP = 0.97 to 0.99, 256 to 1024 cells):
 // cells there switch between sticking and slipping from step to step, and pits a cell wide open between cells that
 // do not wear. The worst record is reported: its cycles, how many places and where. Under a load history it is found
@@ -490,11 +491,11 @@ void worn_zigzag(const Scene& scene, const RunResult& r, std::vector<Warning>& o
     const auto large = [&](double d) { return std::abs(d) > kZigzagShare * w_max; };
     int count = 0;
     double first = 0.0, last = 0.0;
-    for (int i = 1; i + 3 < grid.n; ++i) {
-      const double a = d2(i), b = d2(i + 1), c = d2(i + 2);
-      if (!(large(a) && large(b) && large(c) && a * b < 0.0 && b * c < 0.0)) continue;
+    for (int i = 1; i + 4 < grid.n; ++i) {
+      const double a = d2(i), b = d2(i + 1), c = d2(i + 2), e = d2(i + 3);
+      if (!(large(a) && large(b) && large(c) && large(e) && a * b < 0.0 && b * c < 0.0 && c * e < 0.0)) continue;
       if (count++ == 0) first = grid.x(i);
-      last = grid.x(i + 2);
+      last = grid.x(i + 3);
     }
     if (count > worst) worst = count, at = rec.cycles, left = first, right = last;
   }

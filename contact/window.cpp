@@ -57,18 +57,25 @@ void asperity_minima(const ProfileSpec& s, double shift, double tilt, std::vecto
 
 // The places within 100 level-set widths of the lowest point x_low where g0 ≤ level (a scan of kScan points), and
 // the lowest point of every asperity of an envelope whose gap is within level: where a load of A P / 2 may touch.
-std::vector<double> low_places(const Profile& profile, double level) {
+// With `troughs`, also every local minimum of g0 on that scan, however high: a plane contact's approach is not
+// bounded by A P / 2 (the troughs of a waviness on a cylinder, R = 9.8 mm, A P / 2 below their gap, were pressed
+// 50 µm out while the chosen window held ±20 µm). A periodic profile has none such: its troughs are all the lowest.
+std::vector<double> low_places(const Profile& profile, double level, bool troughs = false) {
   const double x_low = profile.lowest_point();
   const double lo = crossing(profile, x_low, -1.0, level), hi = crossing(profile, x_low, +1.0, level);
   const double w = std::max(hi - lo, 1e-9);
   auto [s0, s1] = profile.support();
   const double r0 = std::max(x_low - 100.0 * w, s0), r1 = std::min(x_low + 100.0 * w, s1);
   constexpr int kScan = 20001;
-  std::vector<double> places{lo, hi};
+  std::vector<double> places{lo, hi}, g(kScan), x(kScan);
   for (int i = 0; i < kScan; ++i) {
-    const double x = r0 + (r1 - r0) * i / (kScan - 1);
-    if (profile.gap(x) <= level) places.push_back(x);
+    x[i] = r0 + (r1 - r0) * i / (kScan - 1);
+    g[i] = profile.gap(x[i]);
+    if (g[i] <= level) places.push_back(x[i]);
   }
+  if (troughs && !profile.periodic())
+    for (int i = 1; i + 1 < kScan; ++i)
+      if (g[i] > level && g[i] < g[i - 1] && g[i] <= g[i + 1] && std::isfinite(g[i])) places.push_back(x[i]);
   std::vector<double> asperities;
   asperity_minima(profile.spec(), 0.0, 0.0, asperities);
   for (double x : asperities)
@@ -99,7 +106,7 @@ std::optional<PressedOutside> pressed_outside(const Profile& profile, const Half
   const Grid& g = kernel.grid();
   // Below this the gap is the solution's own round-off (its approach is of the order of A P).
   const double tolerance = 1e-9 * kernel.A() * P;
-  std::vector<double> places = low_places(profile, 0.5 * kernel.A() * P);
+  std::vector<double> places = low_places(profile, 0.5 * kernel.A() * P, /*troughs=*/true);
   asperity_minima(profile.spec(), 0.0, 0.0, places);  // however high: the approach may exceed A P / 2
   std::optional<PressedOutside> worst;
   for (double x : places) {
@@ -138,6 +145,8 @@ WindowChoice choose_window(const Profile& profile, double A, double P, int cells
   double lo = *lowest, hi = *highest;
   std::vector<double> asperities;
   asperity_minima(profile.spec(), 0.0, 0.0, asperities);
+  for (double x : low_places(profile, level, /*troughs=*/true))
+    if (profile.gap(x) > level) asperities.push_back(x);  // the troughs above the level: checked as asperities
 
   // Trial solves: widen until the contact stays off the trial window's ends and no asperity outside the trial window
   // would be pressed through by the trial's approach.
@@ -177,9 +186,12 @@ WindowChoice choose_window(const Profile& profile, double A, double P, int cells
       });
       if (!in_zone && gap_after(profile, kernel, state, x) < 0.0) xl = std::min(xl, x), xr = std::max(xr, x);
     }
-    // Resolve the zones with at least a few trial cells; else shrink the trial window around them and redo.
-    const double margin_l = std::max(kMargin * bl, 2.0 * trial.h()), margin_r = std::max(kMargin * br, 2.0 * trial.h());
-    (void)cells;
+    // The margin beyond the outer zones: kMargin of their half-widths, and at least two cells of the trial grid and
+    // of the run's own (an outer zone at a wave's crest is narrower than a cell of a coarse run, which would put it
+    // in the window's end cell: m ≥ 2 (W + 2 m) / cells, W = xr − xl, gives m ≥ 2 W / (cells − 4)).
+    const double run_cells = cells > 8 ? 2.0 * (xr - xl) / (cells - 4) : 0.0;
+    const double margin_l = std::max({kMargin * bl, 2.0 * trial.h(), run_cells});
+    const double margin_r = std::max({kMargin * br, 2.0 * trial.h(), run_cells});
     return {xl - margin_l, xr + margin_r, "trial_solve", 0.0};
   }
   throw InputError("grid: no window up to 1 km keeps the contact off its ends for this profile and load; give "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -85,20 +86,48 @@ std::string resolution_advice(const NormalResult& n, double width, int min_cells
                      cells(cells_here));
 }
 
+// Zone numbers (from 1) as runs: "1–3, 5".
+std::string zone_runs(const std::vector<int>& zones) {
+  std::string out;
+  for (std::size_t i = 0; i < zones.size();) {
+    std::size_t j = i;
+    while (j + 1 < zones.size() && zones[j + 1] == zones[j] + 1) ++j;
+    out += (out.empty() ? "" : ", ") + (j > i ? fmt::format("{}–{}", zones[i], zones[j]) : std::to_string(zones[i]));
+    i = j + 1;
+  }
+  return out;
+}
+
+// One warning for all the zones under kMinContactCells (a waviness may touch in dozens), its advice for the
+// narrowest.
 void contact_resolution(const NormalResult& n, std::vector<Warning>& out) {
   const ContactSpan span = contact_span(n);
+  std::vector<int> under;
+  std::size_t narrowest = 0;
+  double narrowest_width = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n.zones.size(); ++k) {
     const Zone& z = n.zones[k];
     const int cells = z.last_cell - z.first_cell + 1;
     if (cells >= kMinContactCells) continue;
+    under.push_back(int(k) + 1);
     const double located = z.right.x > z.left.x ? z.right.x - z.left.x : cells * n.grid.h();
     const double width = n.zones.size() == 1 ? span.right - span.left : located;
-    out.push_back({"contact_under_resolved",
-                   fmt::format("contact zone {} of {} spans {} cell(s) of {:.4g} m; at least {} resolve its pressure "
-                               "(p_max and the extent are grid-dependent): {}",
-                               k + 1, n.zones.size(), cells, n.grid.h(), kMinContactCells,
-                               resolution_advice(n, width, kMinContactCells))});
+    if (width < narrowest_width) narrowest_width = width, narrowest = k;
   }
+  if (under.empty()) return;
+  const Zone& z = n.zones[narrowest];
+  const int cells = z.last_cell - z.first_cell + 1;
+  const std::string which =
+      under.size() == 1
+          ? fmt::format("contact zone {} of {} spans {} cell(s) of {:.4g} m; at least {} resolve its pressure",
+                        narrowest + 1, n.zones.size(), cells, n.grid.h(), kMinContactCells)
+          : fmt::format("contact zones {} of {} span fewer than {} cells each (the narrowest, zone {}, {} cell(s) of "
+                        "{:.4g} m); at least {} resolve a zone's pressure",
+                        zone_runs(under), n.zones.size(), kMinContactCells, narrowest + 1, cells, n.grid.h(),
+                        kMinContactCells);
+  out.push_back({"contact_under_resolved",
+                 which + fmt::format(" (p_max and the extent are grid-dependent): {}",
+                                     resolution_advice(n, narrowest_width, kMinContactCells))});
 }
 
 void closed_form_missed(const NormalResult& n, std::vector<Warning>& out) {

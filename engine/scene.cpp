@@ -1424,6 +1424,26 @@ void check_needs(const Scene& s, const Given& given, std::vector<std::string>& p
                            "of their own each (and a life under blocks would need a damage sum over them, which "
                            "fretwear does not model): run the blocks with effects.wear alone, and each block's load "
                            "as a scene of its own for its stresses, cracks and life");
+      // A force-controlled block after the first that slides: its wear is not determined, as for the scene's own
+      // load (the first block's, checked below as load.Q), whatever the first block's control.
+      if (s.wear && s.friction && given.P_ok)
+        for (std::size_t i = 1; i < s.blocks.size(); ++i) {
+          const LoadBlock& b = s.blocks[i];
+          const double fP = *s.friction * s.P;
+          const double Q = b.Q_amplitude ? *b.Q_amplitude : b.Q_ratio ? *b.Q_ratio * fP : 0.0;
+          const char* why = "the bodies slide, and under force control the slip, hence the block's wear, is not "
+                            "determined; give the block \"delta\" (displacement control) instead";
+          if ((b.Q_amplitude || b.Q_ratio) && Q >= fP)
+            problems.push_back(
+                fmt::format("load.blocks[{}].Q: Q = {:.6g} N/m reaches f P = {:.6g} N/m: {}", i, Q, fP, why));
+          for (const auto& pt : b.history)
+            if (std::abs(pt[2]) >= *s.friction * pt[1]) {
+              problems.push_back(fmt::format("load.blocks[{}].history: reaches |Q| = {:.6g} N/m >= f P = {:.6g} N/m "
+                                             "at t = {:.6g}: {}",
+                                             i, std::abs(pt[2]), *s.friction * pt[1], pt[0], why));
+              break;
+            }
+        }
       if (s.bulk_stress != 0.0)
         for (std::size_t i = 0; i < s.blocks.size(); ++i)
           if (!s.blocks[i].history.empty())

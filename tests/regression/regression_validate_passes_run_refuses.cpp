@@ -53,3 +53,17 @@ TEST_CASE("a cycle_by_cycle wear run past its stability limit: validate and run 
     "grid": {"cells": 4096}, "effects": {"wear": {"k": 1e-9, "cycles": 10, "stepper": "cycle_by_cycle"}}})",
               "effects.wear.stepper");
 }
+
+// Wear under load.blocks whose first block is displacement-controlled and a later one slides under force control
+// (Q/fP = 1.057): validate passed it and run refused it after solving the first block's cycle. Found by running
+// random scenes. Now each later block is checked as the scene's own load is, a history block at every point.
+TEST_CASE("a later load block that slides under force control: validate and run both refuse it, naming the block") {
+  const std::string head = R"({"name": "s", "materials": {"both": {"E": 2e11, "nu": 0.3}},
+    "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5, "grid": {"cells": 128},
+    "effects": {"wear": {"k": 1e-13, "cycles": 30}}, "load": {"P": 1e5, "blocks": [{"delta": 5e-7, "cycles": 10},)";
+  both_refuse(head + R"({"Q": {"ratio": 1.057}, "cycles": 10}, {"Q": {"ratio": 0.5}, "cycles": 10}]}})",
+              "load.blocks[1].Q: Q = 52850 N/m reaches f P = 50000 N/m: the bodies slide");
+  both_refuse(head + R"({"Q": {"ratio": 0.5}, "cycles": 10},
+      {"history": [[0, 1e5, 2e4, 0], [1, 1e5, -6e4, 0], [2, 1e5, 2e4, 0]], "cycles": 10}]}})",
+              "load.blocks[2].history: reaches |Q| = 60000 N/m >= f P = 50000 N/m at t = 1");
+}

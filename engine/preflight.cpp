@@ -111,6 +111,7 @@ Flat flat_holding(const Profile& profile, double area, double h) {
 struct SlidingWear {
   double area_before = 0.0, rate = 0.0, cycles = 0.0, U = 0.0;
   std::string which;
+  double left = 0.0, right = 0.0;  // the unworn contact's ends (m)
 };
 
 // In gross slip the contact wears flat without limit: refused when the flat holding the worn area (the original
@@ -122,19 +123,22 @@ void check_sliding_window(const Model& model, const SlidingWear& load, std::vect
   const Flat end = flat_holding(model.profile, area, grid.h());
   const Flat margin = flat_holding(model.profile, load.area_before + (1.0 + kFlatMargin) * load.rate * load.cycles,
                                    grid.h());
-  if (margin.left - U > grid.x_min && margin.right + U < grid.x_max) return;  // with the margin it fits: so does `end`
   const double x0 = model.profile.lowest_point();
-  const double half = 1.2 * (std::max(x0 - end.left, end.right - x0) + U);
-  if (x0 - U <= grid.x_min || x0 + U >= grid.x_max) {  // the scar alone spans past the window's end
+  const double half =
+      1.2 * (std::max(x0 - std::min(end.left, load.left), std::max(end.right, load.right) - x0) + U);
+  if (U > 0.0 && (load.left - U <= grid.x_min || load.right + U >= grid.x_max)) {
+    // The contact and the stroke alone span past the window's end: the scar reaches it from the first cycle.
     problems.push_back(fmt::format(
         "grid.window: in gross slip{} the pad slides {:.3g} m each way over the specimen, whose scar then spans "
-        "[{:.3g}, {:.3g}] m from the first cycle, past the window [{:.3g}, {:.3g}] m{}. Give grid.window as about "
-        "[{:.3g}, {:.3g}] m (the flat the {:.4g} cycles wear, the stroke each side, and 20 %)",
-        load.which, U, x0 - U, x0 + U, grid.x_min, grid.x_max,
+        "[{:.3g}, {:.3g}] m from the first cycle (the contact and the stroke each side), past the window [{:.3g}, "
+        "{:.3g}] m{}. Give grid.window as about [{:.3g}, {:.3g}] m (the flat the {:.4g} cycles wear, the stroke each "
+        "side, and 20 %)",
+        load.which, U, load.left - U, load.right + U, grid.x_min, grid.x_max,
         model.window.method == "given" ? "" : " (fretwear's choice for the unworn contact)", x0 - half, x0 + half,
         load.cycles));
     return;
   }
+  if (margin.left - U > grid.x_min && margin.right + U < grid.x_max) return;  // with the margin it fits: so does `end`
   // The cycles at which the flat (and U) reaches the nearer end of the window.
   const double d_window = std::min(model.profile.gap(grid.x_min + U), model.profile.gap(grid.x_max - U));
   const double reached = (flat_at(model.profile, d_window, grid.h()).area - load.area_before) / load.rate;
@@ -155,12 +159,14 @@ void check_sliding_window(const Model& model, const SlidingWear& load, std::vect
     preflight->warnings.push_back({"window_reached", "the worn contact may reach the window's end: " + what});
 }
 
-void check_gross_slip_window(const Scene& scene, const Model& model, const CycleStage& cycle, const WearEstimate& e,
-                             std::vector<std::string>& problems, Preflight* preflight) {
+void check_gross_slip_window(const Scene& scene, const Model& model, const NormalResult& normal,
+                             const CycleStage& cycle, const WearEstimate& e, std::vector<std::string>& problems,
+                             Preflight* preflight) {
   if (cycle.result.regime != Regime::gross_slip || !scene.blocks.empty() || !(e.area_rate > 0.0)) return;
+  const double left = normal.zones.front().left.x, right = normal.zones.back().right.x;
   // With each body in its own frame the specimen's scar reaches the sliding amplitude U beyond the contact.
   const double U = bodies_in_own_frames(scene, model, cycle) ? cycle.result.sliding_amplitude : 0.0;
-  check_sliding_window(model, {0.0, e.area_rate, scene.wear->cycles, U, ""}, problems, preflight);
+  check_sliding_window(model, {0.0, e.area_rate, scene.wear->cycles, U, "", left, right}, problems, preflight);
 }
 
 // One cycle's wear against the contact's elastic depth: the cycle-averaged wear model holds the contact fixed
@@ -224,7 +230,10 @@ void check_blocks_window(const Scene& scene, const Model& model, const NormalRes
     if (cycle.result.regime != Regime::gross_slip || !(e.area_rate > 0.0)) continue;
     const double U = bodies_in_own_frames(one, model, cycle) ? cycle.result.sliding_amplitude : 0.0;
     const std::size_t before = problems.size();
-    check_sliding_window(model, {area, e.area_rate, block.cycles, U, fmt::format(" (load.blocks[{}])", b)}, problems,
+    check_sliding_window(model,
+                         {area, e.area_rate, block.cycles, U, fmt::format(" (load.blocks[{}])", b),
+                          normal.zones.front().left.x, normal.zones.back().right.x},
+                         problems,
                          preflight);
     if (problems.size() > before) return;  // the later blocks start beyond the window
     area += e.area_rate * block.cycles;
@@ -240,7 +249,7 @@ void check_wear(const Scene& scene, const Setup& setup, const NormalResult& norm
   check_wear_per_cycle(scene, setup.model, normal, e, scene.blocks.empty() ? "" : " of load.blocks[0]", problems,
                        preflight);
   if (problems.size() > before) return;  // the window and the cost follow from a rate that is not the model's
-  check_gross_slip_window(scene, setup.model, cycle, e, problems, preflight);
+  check_gross_slip_window(scene, setup.model, normal, cycle, e, problems, preflight);
   if (!scene.blocks.empty()) check_blocks_window(scene, setup.model, normal, problems, preflight);
   if (effect.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(e.stability_limit); !problem.empty()) {

@@ -312,10 +312,10 @@ TEST_CASE("a gross-slip wear run whose contact would reach the window's end is r
   // A stroke of 0.32 µm each way (δ = 1 µm, just past the stick limit of 0.68 µm) wears too slowly to get there.
   CHECK(warning_codes(scene("2e6", "[-0.6e-3, 0.6e-3]", "1e-6")).count("window_reached") == 0);
   // A stroke wider than the window with both bodies wearing: the specimen's scar spans past it from the first cycle
-  // (δ = 1 mm slides the pad 0.999 mm each way), where the estimate put the end past the last cycle and only warned, and the run stopped
-  // at its first step. Refused naming grid.window; the window it names holds the run.
-  auto both_wear = [&scene](const std::string& window) {
-    std::string s = scene("100", window, "1e-3");
+  // (δ = 1 mm slides the pad 0.999 mm each way), where the estimate put the end past the last cycle and only warned,
+  // and the run stopped at its first step. Refused naming grid.window; the window it names holds the run.
+  auto both_wear = [&scene](const std::string& window, const std::string& delta = "1e-3") {
+    std::string s = scene("100", window, delta);
     return s.replace(s.find(R"("pad_fraction": 1.0)"), 19, R"("pad_fraction": 0.5)");
   };
   write_file(scratch.path / "s.json", both_wear("[-0.6e-3, 0.6e-3]"));
@@ -331,6 +331,14 @@ TEST_CASE("a gross-slip wear run whose contact would reach the window's end is r
   const Outcome held = run_program(scratch.path, {"run", "-q", "s.json"});
   CAPTURE(held.all());
   CHECK(held.status == 0);
+  // The stroke alone within the window (δ = 0.58 mm), but not with the contact's half-width (0.04 mm) beside it.
+  write_file(scratch.path / "s.json", both_wear("[-0.6e-3, 0.6e-3]", "0.58e-3"));
+  const Outcome wider = run_program(scratch.path, {"validate", "s.json"});
+  CAPTURE(wider.all());
+  CHECK(wider.status == 2);
+  CHECK(wider.err.find("grid.window: in gross slip the pad slides 0.000") != std::string::npos);
+  CHECK(wider.err.find("(the contact and the stroke each side), past the window [-0.0006, 0.0006] m") !=
+        std::string::npos);
   // Under load.blocks each sliding block is checked after the area the sliding blocks before it wear: two blocks of
   // 1.5e5 cycles each fit alone, and the second is refused (a partial-slip block before them, δ = 0.5 µm, wears
   // towards a limit and is left out).

@@ -67,15 +67,15 @@ std::vector<double> low_places(const Profile& profile, double level, bool trough
   auto [s0, s1] = profile.support();
   const double r0 = std::max(x_low - 100.0 * w, s0), r1 = std::min(x_low + 100.0 * w, s1);
   constexpr int kScan = 20001;
-  std::vector<double> places{lo, hi}, g(kScan), x(kScan);
+  std::vector<double> places{lo, hi}, g(kScan), xs(kScan);
   for (int i = 0; i < kScan; ++i) {
-    x[i] = r0 + (r1 - r0) * i / (kScan - 1);
-    g[i] = profile.gap(x[i]);
-    if (g[i] <= level) places.push_back(x[i]);
+    xs[i] = r0 + (r1 - r0) * i / (kScan - 1);
+    g[i] = profile.gap(xs[i]);
+    if (g[i] <= level) places.push_back(xs[i]);
   }
   if (troughs && !profile.periodic())
     for (int i = 1; i + 1 < kScan; ++i)
-      if (g[i] > level && g[i] < g[i - 1] && g[i] <= g[i + 1] && std::isfinite(g[i])) places.push_back(x[i]);
+      if (g[i] > level && g[i] < g[i - 1] && g[i] <= g[i + 1] && std::isfinite(g[i])) places.push_back(xs[i]);
   std::vector<double> asperities;
   asperity_minima(profile.spec(), 0.0, 0.0, asperities);
   for (double x : asperities)

@@ -314,9 +314,9 @@ TEST_CASE("a gross-slip wear run whose contact would reach the window's end is r
   // A stroke wider than the window with both bodies wearing: the specimen's scar spans past it from the first cycle
   // (δ = 1 mm slides the pad 0.999 mm each way), where the estimate put the end past the last cycle and only warned,
   // and the run stopped at its first step. Refused naming grid.window; the window it names holds the run.
-  auto both_wear = [&scene](const std::string& window, const std::string& delta = "1e-3") {
-    std::string s = scene("100", window, delta);
-    return s.replace(s.find(R"("pad_fraction": 1.0)"), 19, R"("pad_fraction": 0.5)");
+  auto both_wear = [&scene](const std::string& in, const std::string& delta = "1e-3") {
+    std::string text = scene("100", in, delta);
+    return text.replace(text.find(R"("pad_fraction": 1.0)"), 19, R"("pad_fraction": 0.5)");
   };
   write_file(scratch.path / "s.json", both_wear("[-0.6e-3, 0.6e-3]"));
   const Outcome stroke = run_program(scratch.path, {"validate", "s.json"});

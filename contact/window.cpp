@@ -140,13 +140,16 @@ WindowChoice choose_window(const Profile& profile, double A, double P, int cells
   // Everything within A P / 2 of the lowest gap may touch; look for such places well beyond the first one, and at
   // separate asperities beyond the scan, whose lowest points are known from the profile's tree.
   const double level = 0.5 * A * P;
-  const std::vector<double> places = low_places(profile, level);
+  // One scan: the places within the level set the trial's first window; the troughs above it (the only places the
+  // scan keeps whose gap exceeds the level) are checked as asperities are.
+  std::vector<double> places = low_places(profile, level, /*troughs=*/true), asperities;
+  const auto troughs = std::stable_partition(places.begin(), places.end(),
+                                             [&](double x) { return profile.gap(x) <= level; });
+  asperities.assign(troughs, places.end());
+  places.erase(troughs, places.end());
+  asperity_minima(profile.spec(), 0.0, 0.0, asperities);
   const auto [lowest, highest] = std::minmax_element(places.begin(), places.end());
   double lo = *lowest, hi = *highest;
-  std::vector<double> asperities;
-  asperity_minima(profile.spec(), 0.0, 0.0, asperities);
-  for (double x : low_places(profile, level, /*troughs=*/true))
-    if (profile.gap(x) > level) asperities.push_back(x);  // the troughs above the level: checked as asperities
 
   // Trial solves: widen until the contact stays off the trial window's ends and no asperity outside the trial window
   // would be pressed through by the trial's approach.

@@ -37,6 +37,20 @@ void WearContact::solve_worn(double P, ContactState& state, const char* what) {
                                        what, to_string(s.termination), s.residual));
 }
 
+void WearContact::check_window(const std::vector<double>& p) const {
+  if (!(p.front() > 0.0) && !(p.back() > 0.0)) return;
+  const Grid& grid = model_.grid;
+  throw InputError(fmt::format(
+      "grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the contact widens as it wears "
+      "(towards its limit in partial slip, without limit in gross slip): {}, or wear fewer cycles",
+      p.front() > 0.0 ? "left" : "right", p.front() > 0.0 ? grid.x_min : grid.x_max,
+      model_.window.method == "given"
+          ? std::string("widen grid.window")
+          : fmt::format("this window, [{:.6g}, {:.6g}] m, is fretwear's choice, sized by the worn contact's limit "
+                        "where the cycle has one (not in gross or reverse slip): give grid.window wider than it",
+                        grid.x_min, grid.x_max)));
+}
+
 bool WearContact::implicit_pressure(std::span<const double> w, std::span<const double> d, std::vector<double>& p) {
   set_gap(w);
   implicit_.p = p;
@@ -120,6 +134,7 @@ void AnalogyContactResponse::respond(std::span<const double> w, wear::CycleRespo
   set_gap(w);
   if (int(out.p.size()) == n) normal_.p = out.p;
   solve_worn(scene_.P, normal_, "normal");
+  check_window(normal_.p);
   if (datum_) solve_top_displacement();
   for (int i = 0; i < n; ++i) gap_[i] -= tilt_ * grid.x(i);
   solve_worn(corrective_load_, corrective_, "corrective");
@@ -287,8 +302,6 @@ double IncrementalContactResponse::worn_area(std::span<const double> w) const {
 
 bool IncrementalContactResponse::lag_allowed(std::span<const double> w) const {
   if (!(gain_ >= 0.0) || !same_stick_zones()) return false;
-  // A contact at the window's ends is the coupled response's error to raise.
-  if (uncoupled_.p.front() > 0.0 || uncoupled_.p.back() > 0.0) return false;
   const double area = worn_area(w);
   return gain_ * drift() * std::abs(area - area_ref_) <= kLagSafety * tolerance_ * area;
 }
@@ -404,16 +417,7 @@ void IncrementalContactResponse::respond_coupled(std::span<const double> w, wear
   if (int(out.p.size()) == n) ref.p = out.p;
   if (own_reference) solve_worn(load_.P, normal_, "normal");
   solve_worn(P_ref_, ref, own_reference ? "normal (the history's largest P)" : "normal");
-  if (ref.p.front() > 0.0 || ref.p.back() > 0.0)
-    throw InputError(fmt::format(
-        "grid.window: the worn contact reaches the window's {} end (x = {:.6g} m); the contact widens as it wears "
-        "(towards its limit in partial slip, without limit in gross slip): {}, or wear fewer cycles",
-        ref.p.front() > 0.0 ? "left" : "right", ref.p.front() > 0.0 ? grid.x_min : grid.x_max,
-        model_.window.method == "given"
-            ? std::string("widen grid.window")
-            : fmt::format("this window, [{:.6g}, {:.6g}] m, is fretwear's choice, sized by the worn contact's limit "
-                          "where the cycle has one (not in gross or reverse slip): give grid.window wider than it",
-                          grid.x_min, grid.x_max)));
+  check_window(ref.p);
   // The worn gap g0 + w for the history's normal solves and the coupled ones (gap_ outlives the call).
   const NormalCoupling coupling{beta_, gap_};
   const IncrementalResult r = load_.history.empty() ? slip_.solve(normal_, load_, &datum_, &coupling)

@@ -52,6 +52,10 @@ class WearContact : public wear::ContactResponse {
   // One of the cycle's solves on the worn profile (gap_, or gap_ shifted): counted, and a ConvergenceError naming
   // `what` when it stops short.
   void solve_worn(double P, ContactState& state, const char* what);
+  // Throws InputError naming grid.window where the pressure p of the worn profile loads either end cell of the
+  // window: the worn contact has grown to the window's end, and would be cut off there (the pressure beyond the
+  // window is not modelled).
+  void check_window(const std::vector<double>& p) const;
   // The counts, for save() and restore().
   nlohmann::json counts() const;
   void restore_counts(const nlohmann::json& j);
@@ -109,6 +113,7 @@ class AnalogyContactResponse : public WearContact {
   // by toms748 over corrective solves; then the cycle at that Q. Throws UnsupportedError from respond() where the
   // worn contact's stick limit falls to δ (the bodies slide) and, as under force control, where it slips backwards.
   AnalogyContactResponse(const Scene& scene, const Model& model, const CyclicLoad& load, const ReferenceDatum& datum);
+  // Throws InputError when the worn contact reaches the end of the window (check_window).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return q_top_; }
   // The tangential load at the top of the cycle: the scene's under force control, the last response's under
@@ -246,7 +251,8 @@ class IncrementalContactResponse : public WearContact {
   // Another load on the cycle stage's datum (a block of load.blocks; P and f are the scene's).
   IncrementalContactResponse(const Scene& scene, const Model& model, const CycleStage& cycle, const CyclicLoad& load,
                              Coupling coupling = Coupling::lagged);
-  // Throws InputError when the worn contact reaches the end of the window (a sliding contact keeps widening).
+  // Throws InputError when the worn contact reaches the end of the window (check_window; a sliding contact keeps
+  // widening).
   void respond(std::span<const double> w, wear::CycleResponse& out) override;
   const std::vector<double>& shear_top() const override { return q_top_; }
   double Q_top() const override { return Q_top_; }

@@ -397,6 +397,30 @@ TEST_CASE("a worn contact that outgrows the window fretwear chose says whose win
   CHECK(given.err.find("fretwear's choice") == std::string::npos);
 }
 
+// Similar bodies under force control wear on the analogy route, which never checked the worn contact against the
+// window: the Hertz wear case in a given window of ±1.2e-4 m, inside the asymptote's worn extent (±1.259e-4 m),
+// loaded the window's end cells with 25 MPa by 3 400 cycles and ran on to "completed", the wear beyond the window
+// cut off and nothing said. The run now stops there with exit 2; in a window of ±1.3e-4 m it completes.
+TEST_CASE("a worn contact that outgrows a given window on the analogy route stops the run") {
+  Scratch scratch{"analogy_window"};
+  auto scene = [](const std::string& window) {
+    return "{" + kMaterials + R"(, "profile": {"type": "cylinder", "R": 0.01}, "friction": 0.5,
+      "load": {"P": 1e5, "Q": {"ratio": 0.5}}, "grid": {"cells": 256, "window": )" + window + R"(},
+      "output": {"plots": false}, "effects": {"wear": {"k": 1e-12, "cycles": 1e7}}})";
+  };
+  write_file(scratch.path / "s.json", scene("[-1.2e-4, 1.2e-4]"));
+  const Outcome o = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(o.all());
+  CHECK(o.status == 2);
+  CHECK(o.err.find("grid.window: the worn contact reaches the window's left end (x = -0.00012 m)") !=
+        std::string::npos);
+  CHECK(snapshot(scratch.path).size() == 1);
+  write_file(scratch.path / "s.json", scene("[-1.3e-4, 1.3e-4]"));
+  const Outcome wide = run_program(scratch.path, {"run", "-q", "s.json"});
+  CAPTURE(wide.all());
+  CHECK(wide.status == 0);
+}
+
 TEST_CASE("a crack on too few quadrature points warns, and so does one the check cannot reach") {
   // Hertz, Q/fP = 0.6, σ_bulk = 100 MPa, 256 cells, a crack normal to the surface at the trailing edge. On 10 points
   // its SIFs differ from those on 5 by 9 % of the largest (on 2, from those on 4 by 14 %: K_I 42 % from its value on

@@ -4,12 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include <boost/math/tools/toms748_solve.hpp>
 
 #include <fmt/format.h>
 
 #include "engine/checkpoint.hpp"
+#include "engine/setup.hpp"
 #include "engine/simulation.hpp"
 #include "engine/stress_stage.hpp"
 #include "engine/wear_stage.hpp"
@@ -169,6 +171,34 @@ void check_gross_slip_window(const Scene& scene, const Model& model, const Norma
   check_sliding_window(model, {0.0, e.area_rate, scene.wear->cycles, U, "", left, right}, problems, preflight);
 }
 
+// A given window that the worn contact's reach (worn_reach, engine/setup.hpp: its asymptote, or a stand-in's) passes
+// is warned: the run stops with exit status 2 if its worn contact gets to the window's end, which depends on how
+// near the limit its cycles take it. Gross slip has no limit and is checked above; a trial solve that does not
+// converge leaves the run to say so.
+void check_worn_reach_window(const Scene& scene, const Model& model, Preflight* preflight) {
+  if (!preflight || !scene.window) return;
+  const Grid& g = model.grid;
+  std::optional<WornReach> reach;
+  try {
+    reach = worn_reach(scene, model.profile, 0.5 * (g.x_min + g.x_max), 0.5 * (g.x_max - g.x_min));
+  } catch (const ConvergenceError&) {
+    return;
+  }
+  if (!reach) return;
+  const auto [l, r] = reach->extent;
+  if (l > g.x_min + g.h() && r < g.x_max - g.h()) return;
+  const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
+  preflight->warnings.push_back(
+      {"window_reached",
+       fmt::format("the worn contact may reach the window's end: it tends to [{:.6g}, {:.6g}] m ({}; docs/SCENES.md, "
+                   "\"Wear\"), past grid.window [{:.6g}, {:.6g}] m, and the run stops with exit status 2 if it gets "
+                   "there before its last cycle: give grid.window about [{:.3g}, {:.3g}] m (that extent with half its "
+                   "half-width to spare), or leave it out to have it chosen",
+                   l, r,
+                   reach->itself ? "the worn extent of its asymptote" : "the worn extent of a stand-in's asymptote",
+                   g.x_min, g.x_max, std::min(g.x_min, c - 1.5 * hw), std::max(g.x_max, c + 1.5 * hw))});
+}
+
 // One cycle's wear against the contact's elastic depth: the cycle-averaged wear model holds the contact fixed
 // through a cycle and wears it between cycles (paper 002, §3), which needs a cycle's wear to move the pressure
 // little. A smooth change δw of the worn profile over a contact of width W moves its pressure by about E* δw / (W/2),
@@ -251,6 +281,7 @@ void check_wear(const Scene& scene, const Setup& setup, const NormalResult& norm
   if (problems.size() > before) return;  // the window and the cost follow from a rate that is not the model's
   check_gross_slip_window(scene, setup.model, normal, cycle, e, problems, preflight);
   if (!scene.blocks.empty()) check_blocks_window(scene, setup.model, normal, problems, preflight);
+  check_worn_reach_window(scene, setup.model, preflight);
   if (effect.stepper == WearStepper::cycle_by_cycle) {
     if (const std::string problem = cycle_by_cycle_problem(e.stability_limit); !problem.empty()) {
       problems.push_back(problem);

@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "contact/wear_limit.hpp"
+#include "engine/cycle_stage.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/wear_stage.hpp"
 
@@ -74,17 +79,27 @@ StandIns window_stand_ins(const Scene& scene) {
   return out;
 }
 
-// A wearing contact grows past its original edges up to the asymptote's worn extent (PHYSICS.md, "Wear": x_e > a),
-// which the default window must cover with the same margin: compute the asymptotes of the stand-ins above on a
-// coarse, wide grid, and cover the widest. A stand-in without a limit (gross slip, reverse slip) adds nothing: a
-// gross-slip run's widening is checked against the window before it starts (engine/preflight.cpp).
-WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
+}  // namespace
+
+// A wearing contact grows past its original edges up to the asymptote's worn extent (PHYSICS.md, "Wear": x_e > a):
+// the asymptotes of the stand-ins above, computed on a coarse, wide grid, and the widest of them taken. A stand-in
+// without a limit adds nothing (a gross-slip run's widening is checked against the window before it starts,
+// engine/preflight.cpp), except in reverse slip: a bulk stress under force control that slips the leading edge
+// backwards (e + c > a, Nowell and Hills 1987) has no established limit, and its worn contact still settles. There
+// the stand-in's limit is taken as paper 002's is, over the stick zones of its first steady cycle (marched by the
+// incremental route, CycleResult::stick_zones): a complete contact over them under P (contact/wear_limit.hpp). They
+// are shorter than the stick zone of the same load without the bulk stress, and shifted, so the limit sits deeper
+// and reaches further than that load's. The worn contacts of cylinders, flats with rounded corners and rounded
+// wedges at f = 0.3, Q/fP = 0.6 and σ = 200–400 MPa, similar and dissimilar, and of two asperities, end within 0.1
+// of its half-width of it (tests/regression/regression_worn_contact_outgrows_window.cpp). Where the bulk stress
+// dwarfs the friction (σ above 4 f p0 or so) the stick zones are a few cells at the trailing edge and the contact
+// wears on like one in gross slip, past any such limit: the run stops at the window's end, saying so.
+std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, double centre, double half_width) {
   constexpr int kTrialCells = 1024;
   const StandIns stand_ins = window_stand_ins(scene);
-  const double centre = 0.5 * (w.x_min + w.x_max);
-  double l = std::numeric_limits<double>::infinity(), r = -l;
-  for (const Scene& s : stand_ins.scenes) {
-    double half = 0.5 * (w.x_max - w.x_min);
+  // The stand-in's worn extent (its asymptote's and its contact zones'), or why it has none.
+  const auto worn_extent = [&](const Scene& s, std::string& unavailable) -> std::optional<Interval> {
+    double half = half_width;
     for (int attempt = 0;; ++attempt, half *= 2.0) {
       if (attempt == 6)
         throw InputError("grid: the asymptotic worn zone keeps reaching the end of a trial window 64 times the "
@@ -96,24 +111,54 @@ WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowCh
       try {
         normal = solve_normal(s, trial);
         a = wear_asymptote(s, trial, normal);
+        unavailable = a.unavailable;
+        if (a.worn_area <= 0.0 && !unavailable.empty() && s.control == LoadControl::force && s.bulk_stress != 0.0) {
+          const CycleStage cycle = solve_cycle(s, trial, normal);  // reverse slip: over the zones that never slip
+          std::vector<Zone> stick(cycle.result.stick_zones.size());
+          for (std::size_t k = 0; k < stick.size(); ++k)
+            stick[k].left.x = cycle.result.stick_zones[k].first, stick[k].right.x = cycle.result.stick_zones[k].second;
+          if (stick.empty()) return std::nullopt;
+          static_cast<WearLimit&>(a) = wear_limit(trial.profile, trial.pair.A(), trial.grid, s.P, stick);
+        }
       } catch (const ConvergenceError& e) {  // on a grid the user never asked for: say which, and how to skip it
         throw ConvergenceError(fmt::format("grid.window: sizing the default window for the worn contact on a trial "
                                            "grid of {} cells over [{:.6g}, {:.6g}] m: {}; give grid.window to skip "
                                            "this trial",
                                            kTrialCells, lo, hi, e.what()));
       }
-      if (a.worn_area <= 0.0) break;
+      if (a.worn_area <= 0.0) return std::nullopt;
       if (a.extent.first <= trial.grid.x_min + trial.grid.h() || a.extent.second >= trial.grid.x_max - trial.grid.h())
         continue;
-      l = std::min({l, a.extent.first, normal.zones.front().left.x});
-      r = std::max({r, a.extent.second, normal.zones.back().right.x});
-      break;
+      return Interval{std::min(a.extent.first, normal.zones.front().left.x),
+                      std::max(a.extent.second, normal.zones.back().right.x)};
     }
+  };
+  WornReach reach{{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()},
+                  stand_ins.itself};
+  for (const Scene& s : stand_ins.scenes) {
+    std::string unavailable;
+    const std::optional<Interval> e = worn_extent(s, unavailable);
+    if (!e) continue;
+    reach.itself = reach.itself && unavailable.empty();
+    reach.extent.first = std::min(reach.extent.first, e->first);
+    reach.extent.second = std::max(reach.extent.second, e->second);
   }
-  if (!(l < r)) return w;
-  const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
+  if (!(reach.extent.first < reach.extent.second)) return std::nullopt;
+  return reach;
+}
+
+namespace {
+
+// The default window covers the worn contact's reach with the same margin as the contact: half its half-width to
+// spare each side.
+WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
+  const std::optional<WornReach> reach =
+      worn_reach(scene, profile, 0.5 * (w.x_min + w.x_max), 0.5 * (w.x_max - w.x_min));
+  if (!reach) return w;
+  const double c = 0.5 * (reach->extent.first + reach->extent.second);
+  const double hw = 0.5 * (reach->extent.second - reach->extent.first);
   return {std::min(w.x_min, c - 1.5 * hw), std::max(w.x_max, c + 1.5 * hw),
-          w.method + (stand_ins.itself ? "+wear_asymptote" : "+wear_stand_in"), w.expected_half_width};
+          w.method + (reach->itself ? "+wear_asymptote" : "+wear_stand_in"), w.expected_half_width};
 }
 
 // The wear run's stick zones are whole cells: those the first cycle's corrective contact loads, which it never wears

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact/elastic_pair.hpp"
@@ -74,5 +75,16 @@ struct Setup {
 };
 
 Setup make_setup(const Scene& scene);
+
+// Where a wearing scene's worn contact tends to: the worn extent of its asymptote (paper 002's limit), or where the
+// scene has none of its own, of stand-ins that have one (the similar pair of the same compliance, each load held
+// constant; docs/SCENES.md, "Wear"), the widest; the trial grids are centred at `centre` and start 5 half_width
+// wide. `itself`: the scene's own asymptote. None where no stand-in has a limit (gross slip). The default window
+// covers it with a margin; a given window that does not is warned (engine/preflight.cpp).
+struct WornReach {
+  std::pair<double, double> extent;  // m
+  bool itself = true;
+};
+std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, double centre, double half_width);
 
 }  // namespace fretwear

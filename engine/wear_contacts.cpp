@@ -47,7 +47,8 @@ void WearContact::check_window(const std::vector<double>& p) const {
       model_.window.method == "given"
           ? std::string("widen grid.window")
           : fmt::format("this window, [{:.6g}, {:.6g}] m, is fretwear's choice, sized by the worn contact's limit "
-                        "where the cycle has one (not in gross or reverse slip): give grid.window wider than it",
+                        "where the cycle has one (not in gross slip, nor where a bulk stress dwarfs the friction): "
+                        "give grid.window wider than it",
                         grid.x_min, grid.x_max)));
 }
 

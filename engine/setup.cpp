@@ -29,10 +29,10 @@ Model model_on(const Scene& scene, const Grid& grid, const WindowChoice& window)
 // limit (wear_asymptote) is that of similar bodies under one constant load; a scene outside it still wears its slip
 // zones towards some limit, so its window is sized from these stand-ins:
 //  - each loading of the scene (its own, or each block of load.blocks) held constant: load.Q as given, load.delta
-//    without the bulk stress (with it the limit is not established; the stick zone shifts by a fraction of its
-//    width, well inside the window's margin); a history at its largest ratio |Q|/(fP) under its largest P (the
-//    smallest stick zone it reaches, so the widest slip zones), with the bulk stress of the point where that ratio
-//    is reached, in phase;
+//    with its bulk stress (whose limit is not established: worn_reach takes both δ's asymptote without it and the
+//    limit over the stick zones of its marched first cycle); a history at its largest ratio |Q|/(fP) under its
+//    largest P (the smallest stick zone it reaches, so the widest slip zones), with the bulk stress of the point
+//    where that ratio is reached, in phase;
 //  - dissimilar bodies (Dundurs β ≠ 0) as the similar pair of the same compliance A = 2/E*, the pad's material with
 //    its modulus scaled: the same contact under P, and the uncoupled pressure's limit, which the lagged coupled run
 //    tends to (engine/wear_contacts.hpp).
@@ -58,10 +58,7 @@ StandIns window_stand_ins(const Scene& scene) {
     Scene s = base;
     s.Q_amplitude = Q_amplitude, s.Q_ratio = Q_ratio, s.delta = delta, s.history.clear();
     s.control = delta ? LoadControl::displacement : LoadControl::force;
-    if (delta && s.bulk_stress != 0.0) {  // δ's limit with a bulk stress is not established: the stand-in is δ's
-      s.bulk_stress = 0.0;                // without it
-      out.itself = false;
-    }
+    if (delta && s.bulk_stress != 0.0) out.itself = false;  // δ's limit with a bulk stress is not established
     if (history.empty()) return s;
     double ratio = 0.0;
     for (const auto& pt : history) {
@@ -84,16 +81,18 @@ StandIns window_stand_ins(const Scene& scene) {
 // A wearing contact grows past its original edges up to the asymptote's worn extent (PHYSICS.md, "Wear": x_e > a):
 // the asymptotes of the stand-ins above, computed on a coarse, wide grid, and the widest of them taken. A stand-in
 // without a limit adds nothing (a gross-slip run's widening is checked against the window before it starts,
-// engine/preflight.cpp), except in reverse slip: a bulk stress under force control that slips the leading edge
-// backwards (e + c > a, Nowell and Hills 1987) has no established limit, and its worn contact still settles. There
-// the stand-in's limit is taken as paper 002's is, over the stick zones of its first steady cycle (marched by the
-// incremental route, CycleResult::stick_zones): a complete contact over them under P (contact/wear_limit.hpp). They
-// are shorter than the stick zone of the same load without the bulk stress, and shifted, so the limit sits deeper
-// and reaches further than that load's. The worn contacts of cylinders, flats with rounded corners and rounded
-// wedges at f = 0.3, Q/fP = 0.6 and σ = 200–400 MPa, similar and dissimilar, and of two asperities, end within 0.1
-// of its half-width of it (tests/regression/regression_worn_contact_outgrows_window.cpp). Where the bulk stress
-// dwarfs the friction (σ above 4 f p0 or so) the stick zones are a few cells at the trailing edge and the contact
-// wears on like one in gross slip, past any such limit: the run stops at the window's end, saying so.
+// engine/preflight.cpp), except with a bulk stress: under force control in reverse slip (the leading edge slips
+// backwards, e + c > a, Nowell and Hills 1987), and under displacement control, the limit is not established, and
+// the worn contact still settles. There the stand-in's limit is taken as paper 002's is, over the stick zones of its
+// first steady cycle (marched by the incremental route, CycleResult::stick_zones): a complete contact over them
+// under P (contact/wear_limit.hpp); under δ it is also taken without the bulk stress (δ's asymptote), and the wider
+// of the two covered. The stick zones are shorter than those of the same load without the bulk stress, and shifted,
+// so the limit sits deeper and reaches further than that load's. The worn contacts of cylinders, flats with rounded
+// corners and rounded wedges at f = 0.3, Q/fP = 0.6 and σ = 200–400 MPa, similar and dissimilar, of two asperities,
+// and of a rounded flat under δ between dissimilar bodies end within 0.1 of its half-width of it
+// (tests/regression/regression_worn_contact_outgrows_window.cpp). Where the bulk stress dwarfs the friction the
+// stick zones are a few cells at the trailing edge and the contact wears on like one in gross slip, past any such
+// limit: the run stops at the window's end, saying so.
 std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, double centre, double half_width) {
   constexpr int kTrialCells = 1024;
   const StandIns stand_ins = window_stand_ins(scene);
@@ -112,8 +111,8 @@ std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, 
         normal = solve_normal(s, trial);
         a = wear_asymptote(s, trial, normal);
         unavailable = a.unavailable;
-        if (a.worn_area <= 0.0 && !unavailable.empty() && s.control == LoadControl::force && s.bulk_stress != 0.0) {
-          const CycleStage cycle = solve_cycle(s, trial, normal);  // reverse slip: over the zones that never slip
+        if (a.worn_area <= 0.0 && !unavailable.empty() && s.bulk_stress != 0.0) {
+          const CycleStage cycle = solve_cycle(s, trial, normal);  // over the first cycle's stick zones
           std::vector<Zone> stick(cycle.result.stick_zones.size());
           for (std::size_t k = 0; k < stick.size(); ++k)
             stick[k].left.x = cycle.result.stick_zones[k].first, stick[k].right.x = cycle.result.stick_zones[k].second;
@@ -136,12 +135,19 @@ std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, 
   WornReach reach{{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()},
                   stand_ins.itself};
   for (const Scene& s : stand_ins.scenes) {
-    std::string unavailable;
-    const std::optional<Interval> e = worn_extent(s, unavailable);
-    if (!e) continue;
-    reach.itself = reach.itself && unavailable.empty();
-    reach.extent.first = std::min(reach.extent.first, e->first);
-    reach.extent.second = std::max(reach.extent.second, e->second);
+    std::vector<Scene> tried{s};
+    if (s.delta && s.bulk_stress != 0.0) {  // and δ's own asymptote without the bulk stress
+      tried.push_back(s);
+      tried.back().bulk_stress = 0.0;
+    }
+    for (const Scene& t : tried) {
+      std::string unavailable;
+      const std::optional<Interval> e = worn_extent(t, unavailable);
+      if (!e) continue;
+      reach.itself = reach.itself && unavailable.empty();
+      reach.extent.first = std::min(reach.extent.first, e->first);
+      reach.extent.second = std::max(reach.extent.second, e->second);
+    }
   }
   if (!(reach.extent.first < reach.extent.second)) return std::nullopt;
   return reach;
@@ -185,8 +191,9 @@ Model align_to_stick(const Scene& scene, Model m) {
   const bool dissimilar = beta > 1e-12 && scene.blocks.empty() && scene.history.empty();
   InitialStick st;
   if (dissimilar) {
-    const StandIns stand_ins = window_stand_ins(scene);  // the similar pair of the same compliance first
-    st = initial_stick_zones(stand_ins.scenes.front(), model_on(stand_ins.scenes.front(), m.grid, m.window));
+    Scene similar = window_stand_ins(scene).scenes.front();  // the similar pair of the same compliance
+    if (similar.delta) similar.bulk_stress = 0.0;              // δ's stick zone, as its asymptote's
+    st = initial_stick_zones(similar, model_on(similar, m.grid, m.window));
   } else {
     st = initial_stick_zones(scene, m);
   }

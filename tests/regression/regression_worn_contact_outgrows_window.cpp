@@ -116,3 +116,20 @@ TEST_CASE("a dissimilar wear run in reverse slip stays inside the default window
   s.bulk_stress = 4e8;
   wears_inside_default_window(s);
 }
+
+// Displacement control with a bulk stress between dissimilar bodies (steel on titanium, a flat with rounded corners,
+// f = 0.3, δ = 1 µm, σ = 300 MPa): δ's asymptote without the bulk stress sized the window, and the worn contact
+// reached its left end. The limit over the stick zones of the marched first cycle, with the bulk stress, reaches
+// further and sizes it now.
+TEST_CASE("a dissimilar wear run under displacement control with a bulk stress stays inside the default window") {
+  Scene s = test::hertz_wear(kP, 0.5, kCycles, kCells);
+  s.Q_ratio.reset();
+  s.control = LoadControl::displacement;
+  s.delta = 1e-6;
+  s.bulk_stress = 3e8;
+  s.friction = 0.3;
+  s.specimen = {110e9, 0.33};
+  s.profile.type = ProfileType::flat_rounded;
+  s.profile.a = 5e-5;
+  wears_inside_default_window(s);
+}

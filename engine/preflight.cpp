@@ -173,8 +173,9 @@ void check_gross_slip_window(const Scene& scene, const Model& model, const Norma
 
 // A given window that the worn contact's reach (worn_reach, engine/setup.hpp: its asymptote, or a stand-in's) passes
 // is warned: the run stops with exit status 2 if its worn contact gets to the window's end, which depends on how
-// near the limit its cycles take it. Gross slip has no limit and is checked above; a trial solve that does not
-// converge leaves the run to say so.
+// near the limit its cycles take it. Gross slip has no limit and is checked above. Where the trial cannot place the
+// limit (it does not converge, or keeps reaching the trial grid's end) nothing is said: a given window skips the
+// trial that sizes a default one, and its scene is not refused for it; the run says what it meets.
 void check_worn_reach_window(const Scene& scene, const Model& model, Preflight* preflight) {
   if (!preflight || !scene.window) return;
   const Grid& g = model.grid;
@@ -183,11 +184,13 @@ void check_worn_reach_window(const Scene& scene, const Model& model, Preflight* 
     reach = worn_reach(scene, model.profile, 0.5 * (g.x_min + g.x_max), 0.5 * (g.x_max - g.x_min));
   } catch (const ConvergenceError&) {
     return;
+  } catch (const InputError&) {
+    return;
   }
   if (!reach) return;
   const auto [l, r] = reach->extent;
   if (l > g.x_min + g.h() && r < g.x_max - g.h()) return;
-  const double c = 0.5 * (l + r), hw = 0.5 * (r - l);
+  const auto [lo, hi] = reach->covered();
   preflight->warnings.push_back(
       {"window_reached",
        fmt::format("the worn contact may reach the window's end: it tends to [{:.6g}, {:.6g}] m ({}; docs/SCENES.md, "
@@ -196,7 +199,7 @@ void check_worn_reach_window(const Scene& scene, const Model& model, Preflight* 
                    "half-width to spare), or leave it out to have it chosen",
                    l, r,
                    reach->itself ? "the worn extent of its asymptote" : "the worn extent of a stand-in's asymptote",
-                   g.x_min, g.x_max, std::min(g.x_min, c - 1.5 * hw), std::max(g.x_max, c + 1.5 * hw))});
+                   g.x_min, g.x_max, std::min(g.x_min, lo), std::max(g.x_max, hi))});
 }
 
 // One cycle's wear against the contact's elastic depth: the cycle-averaged wear model holds the contact fixed

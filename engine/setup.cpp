@@ -155,15 +155,13 @@ std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, 
 
 namespace {
 
-// The default window covers the worn contact's reach with the same margin as the contact: half its half-width to
-// spare each side.
+// The default window covers the worn contact's reach with the same margin as the contact (WornReach::covered).
 WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
   const std::optional<WornReach> reach =
       worn_reach(scene, profile, 0.5 * (w.x_min + w.x_max), 0.5 * (w.x_max - w.x_min));
   if (!reach) return w;
-  const double c = 0.5 * (reach->extent.first + reach->extent.second);
-  const double hw = 0.5 * (reach->extent.second - reach->extent.first);
-  return {std::min(w.x_min, c - 1.5 * hw), std::max(w.x_max, c + 1.5 * hw),
+  const auto [lo, hi] = reach->covered();
+  return {std::min(w.x_min, lo), std::max(w.x_max, hi),
           w.method + (reach->itself ? "+wear_asymptote" : "+wear_stand_in"), w.expected_half_width};
 }
 

@@ -84,6 +84,11 @@ Setup make_setup(const Scene& scene);
 struct WornReach {
   std::pair<double, double> extent;  // m
   bool itself = true;
+  // The window that covers it as the default window does: the extent with half its half-width to spare each side.
+  std::pair<double, double> covered() const {
+    const double c = 0.5 * (extent.first + extent.second), hw = 0.5 * (extent.second - extent.first);
+    return {c - 1.5 * hw, c + 1.5 * hw};
+  }
 };
 std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, double centre, double half_width);
 

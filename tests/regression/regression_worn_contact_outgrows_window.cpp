@@ -57,6 +57,16 @@ void wears_inside_default_window(const Scene& scene) {
   CHECK((left < old.x_min + old.h() || right > old.x_max - old.h()));
 }
 
+// The Hertz wear case under displacement control, δ (m) with a bulk stress σ (Pa).
+Scene displacement_with_bulk_stress(double delta, double sigma) {
+  Scene s = test::hertz_wear(kP, 0.5, kCycles, kCells);
+  s.Q_ratio.reset();
+  s.control = LoadControl::displacement;
+  s.delta = delta;
+  s.bulk_stress = sigma;
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("a dissimilar wear run's worn contact stays inside the default window") {
@@ -83,12 +93,7 @@ TEST_CASE("a wear run under load blocks stays inside the default window") {
 }
 
 TEST_CASE("a wear run under displacement control with a bulk stress stays inside the default window") {
-  Scene s = test::hertz_wear(kP, 0.5, kCycles, kCells);
-  s.Q_ratio.reset();
-  s.control = LoadControl::displacement;
-  s.delta = 1.2e-6;
-  s.bulk_stress = 1e8;
-  wears_inside_default_window(s);
+  wears_inside_default_window(displacement_with_bulk_stress(1.2e-6, 1e8));
 }
 
 // Reverse slip under force control: f = 0.3, Q/fP = 0.6 and σ = 400 MPa put Nowell and Hills' shifted stick zone past
@@ -118,15 +123,11 @@ TEST_CASE("a dissimilar wear run in reverse slip stays inside the default window
 }
 
 // Displacement control with a bulk stress between dissimilar bodies (steel on titanium, a flat with rounded corners,
-// f = 0.3, δ = 1 µm, σ = 300 MPa): δ's asymptote without the bulk stress sized the window, and the worn contact
-// reached its left end. The limit over the stick zones of the marched first cycle, with the bulk stress, reaches
-// further and sizes it now.
+// f = 0.3, δ = 1 µm, σ = 300 MPa): δ without the bulk stress, the only stand-in, slides and sized nothing, and the
+// worn contact reached the unworn window's left end. The limit over the stick zones of the marched first cycle, with
+// the bulk stress, sizes it now.
 TEST_CASE("a dissimilar wear run under displacement control with a bulk stress stays inside the default window") {
-  Scene s = test::hertz_wear(kP, 0.5, kCycles, kCells);
-  s.Q_ratio.reset();
-  s.control = LoadControl::displacement;
-  s.delta = 1e-6;
-  s.bulk_stress = 3e8;
+  Scene s = displacement_with_bulk_stress(1e-6, 3e8);
   s.friction = 0.3;
   s.specimen = {110e9, 0.33};
   s.profile.type = ProfileType::flat_rounded;

@@ -6,10 +6,9 @@
 #include <cstdint>
 #include <optional>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include <fmt/format.h>
 
+#include "contact/worn_flat.hpp"
 #include "engine/checkpoint.hpp"
 #include "engine/setup.hpp"
 #include "engine/simulation.hpp"
@@ -61,52 +60,6 @@ void check_strain(const Scene& scene, const Model& model, const NormalResult& no
     check_history(fmt::format("load.blocks[{}].history", b), scene.blocks[b].history);
 }
 
-// Gross slip wears the contact flat and never stops: every contact cell slides the stroke each cycle, the worn area
-// grows by c ∫ p s dx a cycle, and the contact widens as the profile flattens, until the run's contact reaches the
-// window's end and the run stops with an error (engine/wear_contacts.cpp). The worn profile is about the original gap
-// g0 cut flat at the depth d that holds the worn area,
-//     W(d) = ∫ max(0, d − g0(x)) dx,
-// whose ends are where g0 = d: on examples/gross_slip_displacement_wear.json the flat after 18 000 cycles ends at
-// ±0.244 mm where the run's contact ends at ±0.246 mm, and with 2e6 cycles the run reached the window's end (±0.6 mm)
-// at cycle 260 747 where this puts it at 2.67e5. The estimate is optimistic on both counts (the elastic contact
-// reaches a little past the flat, and the slip per cycle grows as the contact flattens), so a run it puts past the
-// window's end is refused before it starts, and one within kFlatMargin of it warned.
-constexpr double kFlatMargin = 0.1;
-
-// W(d) of the profile and where g0 = d, integrated outward from the lowest point in steps of h/4 (trapezoids).
-struct Flat {
-  double area = 0.0, left = 0.0, right = 0.0;
-};
-Flat flat_at(const Profile& profile, double d, double h) {
-  const double dx = 0.25 * h, x0 = profile.lowest_point();
-  Flat f{0.0, x0, x0};
-  for (int side : {-1, 1}) {
-    double x = x0, v = std::max(0.0, d - profile.gap(x0));
-    for (int k = 1; v > 0.0 && k < 100000000; ++k) {
-      const double xn = x0 + side * k * dx, vn = std::max(0.0, d - profile.gap(xn));
-      // the end between x and xn, where d − g0 falls to zero (linear)
-      const double t = vn > 0.0 ? 1.0 : v / (v - (d - profile.gap(xn)));
-      f.area += 0.5 * (v + (vn > 0.0 ? vn : 0.0)) * dx * t;
-      (side < 0 ? f.left : f.right) = x + side * t * dx;
-      x = xn, v = vn;
-    }
-  }
-  return f;
-}
-
-// The depth whose flat holds `area` (m²): TOMS 748 on W(d) − area, bracketed by doubling.
-Flat flat_holding(const Profile& profile, double area, double h) {
-  double hi = 1e-9;
-  Flat top = flat_at(profile, hi, h);
-  for (; top.area < area && hi < 1.0; top = flat_at(profile, hi, h)) hi *= 2.0;
-  if (!(top.area >= area)) return top;
-  std::uintmax_t iterations = 200;
-  const auto [lo_d, hi_d] = boost::math::tools::toms748_solve(
-      [&](double d) { return flat_at(profile, d, h).area - area; }, 0.0, hi, -area, top.area - area,
-      boost::math::tools::eps_tolerance<double>(30), iterations);
-  return flat_at(profile, 0.5 * (lo_d + hi_d), h);
-}
-
 // A load that wears in gross slip, for the window check below: the area worn before it (m²), its first cycle's
 // rate c ∫ p s dx (m²/cycle), its cycles, how far the specimen's scar reaches beyond the contact (U with each body in
 // its own frame, else 0), and what names it in the message ("" for the scene's own load).
@@ -116,18 +69,18 @@ struct SlidingWear {
   double left = 0.0, right = 0.0;  // the unworn contact's ends (m)
 };
 
-// In gross slip the contact wears flat without limit: refused when the flat holding the worn area (the original
-// profile cut flat, and U beyond it) reaches the window's end within the cycles, warned within 20 % of them.
+// In gross slip the contact wears flat without limit (contact/worn_flat.hpp), until the run's contact reaches the
+// window's end and the run stops with an error (engine/wear_contacts.cpp): refused when the flat holding the worn
+// area (the original profile cut flat, and U beyond it) reaches the window's end within the cycles, and warned when
+// it does with kFlatMargin more wear. A window fretwear chooses holds it (engine/setup.cpp, sliding_reach), so this
+// refuses given windows, and chosen ones only where the run's grid puts the rate higher than the trial's did.
 void check_sliding_window(const Model& model, const SlidingWear& load, std::vector<std::string>& problems,
                           Preflight* preflight) {
   const Grid& grid = model.grid;
   const double U = load.U, area = load.area_before + load.rate * load.cycles;
-  const Flat end = flat_holding(model.profile, area, grid.h());
   const Flat margin = flat_holding(model.profile, load.area_before + (1.0 + kFlatMargin) * load.rate * load.cycles,
                                    grid.h());
-  const double x0 = model.profile.lowest_point();
-  const double half =
-      1.2 * (std::max(x0 - std::min(end.left, load.left), std::max(end.right, load.right) - x0) + U);
+  const auto [advised_lo, advised_hi] = window_holding(model.profile, area, grid.h(), U, load.left, load.right);
   if (U > 0.0 && (load.left - U <= grid.x_min || load.right + U >= grid.x_max)) {
     // The contact and the stroke alone span past the window's end: the scar reaches it from the first cycle.
     problems.push_back(fmt::format(
@@ -136,7 +89,7 @@ void check_sliding_window(const Model& model, const SlidingWear& load, std::vect
         "{:.3g}] m{}. Give grid.window as about [{:.3g}, {:.3g}] m (the flat the {:.4g} cycles wear, the stroke each "
         "side, and 20 %)",
         load.which, U, load.left - U, load.right + U, grid.x_min, grid.x_max,
-        model.window.method == "given" ? "" : " (fretwear's choice for the unworn contact)", x0 - half, x0 + half,
+        model.window.method == "given" ? "" : " (fretwear's choice for the unworn contact)", advised_lo, advised_hi,
         load.cycles));
     return;
   }
@@ -154,7 +107,7 @@ void check_sliding_window(const Model& model, const SlidingWear& load, std::vect
       load.which, load.rate,
       load.area_before > 0.0 ? fmt::format(", after the {:.3g} m² the sliding blocks before it wear", load.area_before)
                              : "",
-      scar, std::max(0.0, reached), load.cycles, x0 - half, x0 + half);
+      scar, std::max(0.0, reached), load.cycles, advised_lo, advised_hi);
   if (reached < load.cycles)
     problems.push_back((load.which.empty() ? "effects.wear.cycles: " : "load.blocks: ") + what);
   else if (preflight)

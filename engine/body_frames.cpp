@@ -101,8 +101,13 @@ void BodyFrames::deposit(std::span<const double> v, std::size_t k, std::span<dou
       if (j < 0 || j >= n_)
         throw InputError(fmt::format(
             "wear: the specimen's scar reaches the end of grid.window (the pad slides {:.3g} m each way over the "
-            "specimen): widen grid.window",
-            std::max(std::abs(positions_.share[k].first), std::abs(positions_.share[k].second)) * model_.grid.h()));
+            "specimen): {}",
+            std::max(std::abs(positions_.share[k].first), std::abs(positions_.share[k].second)) * model_.grid.h(),
+            model_.window.method == "given"
+                ? std::string("widen grid.window")
+                : fmt::format("this window, [{:.6g}, {:.6g}] m, is fretwear's choice, sized for the flat the first "
+                              "cycle's rate wears: give grid.window wider than it",
+                              model_.grid.x_min, model_.grid.x_max)));
       out[std::size_t(j)] += weight * value;
     });
   }

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "contact/wear_limit.hpp"
+#include "contact/worn_flat.hpp"
 #include "engine/cycle_stage.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/wear_stage.hpp"
@@ -140,14 +141,17 @@ std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, 
       tried.push_back(s);
       tried.back().bulk_stress = 0.0;
     }
+    bool limited = false;
     for (const Scene& t : tried) {
       std::string unavailable;
       const std::optional<Interval> e = worn_extent(t, unavailable);
       if (!e) continue;
+      limited = true;
       reach.itself = reach.itself && unavailable.empty();
       reach.extent.first = std::min(reach.extent.first, e->first);
       reach.extent.second = std::max(reach.extent.second, e->second);
     }
+    reach.every_load = reach.every_load && limited;
   }
   if (!(reach.extent.first < reach.extent.second)) return std::nullopt;
   return reach;
@@ -155,14 +159,66 @@ std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, 
 
 namespace {
 
-// The default window covers the worn contact's reach with the same margin as the contact (WornReach::covered).
+// The window that holds a run wearing in gross slip, which has no limit: the flat that holds what the run wears at
+// its loads' first-cycle rates, kFlatMargin more, with U each side where each body wears in its own frame, and 20 %
+// to spare (contact/worn_flat.hpp, the same window engine/preflight.cpp advises for a given one). Each load (the
+// scene's, or each block of load.blocks in turn) is solved for one cycle on a trial grid of kTrialCells over the
+// unworn contact's window w; the loads in partial slip wear towards a limit and add nothing here. Empty when no load
+// slides. The rates are those of the unworn contact, as the preflight's; they hold because in gross slip c ∫ p s dx
+// is about c P times the stroke whatever the contact's shape.
+std::optional<Interval> sliding_reach(const Scene& scene, const Profile& profile, const WindowChoice& w) {
+  constexpr int kTrialCells = 1024;
+  // Under force control the scene is refused where Q reaches f P (the slip would not be determined), so only a load
+  // under displacement control can slide.
+  bool displacement = scene.blocks.empty() && scene.control == LoadControl::displacement;
+  for (const LoadBlock& b : scene.blocks) displacement = displacement || b.delta.has_value();
+  if (!displacement) return std::nullopt;
+  const Model trial = model_on(scene, align_to_support(profile, w.x_min, w.x_max, kTrialCells),
+                               {w.x_min, w.x_max, "trial", 0.0});
+  std::vector<Scene> loads;
+  if (scene.blocks.empty()) loads.push_back(scene);
+  for (const LoadBlock& b : scene.blocks) loads.push_back(block_scene(scene, b));
+  double area = 0.0, U = 0.0;
+  NormalResult normal;
+  try {
+    normal = solve_normal(scene, trial);
+    for (const Scene& one : loads) {
+      const CycleStage cycle = solve_cycle(one, trial, normal);
+      if (cycle.result.regime != Regime::gross_slip) continue;
+      area += estimate_wear(one, trial, cycle, /*timed=*/false).area_rate * one.wear->cycles;
+      if (bodies_in_own_frames(one, trial, cycle)) U = std::max(U, cycle.result.sliding_amplitude);
+    }
+  } catch (const ConvergenceError& e) {  // on a grid the user never asked for: say which, and how to skip it
+    throw ConvergenceError(fmt::format("grid.window: sizing the default window for gross slip's worn flat on a trial "
+                                       "grid of {} cells over [{:.6g}, {:.6g}] m: {}; give grid.window to skip "
+                                       "this trial",
+                                       kTrialCells, w.x_min, w.x_max, e.what()));
+  }
+  if (!(area > 0.0) || normal.zones.empty()) return std::nullopt;
+  const auto [lo, hi] = window_holding(profile, (1.0 + kFlatMargin) * area, trial.grid.h(), U,
+                                       normal.zones.front().left.x, normal.zones.back().right.x);
+  return Interval{lo, hi};
+}
+
+// The default window covers the worn contact's reach with the same margin as the contact (WornReach::covered), and
+// in gross slip the flat the run wears (sliding_reach).
 WindowChoice widen_for_wear(const Scene& scene, const Profile& profile, WindowChoice w) {
   const std::optional<WornReach> reach =
       worn_reach(scene, profile, 0.5 * (w.x_min + w.x_max), 0.5 * (w.x_max - w.x_min));
-  if (!reach) return w;
-  const auto [lo, hi] = reach->covered();
-  return {std::min(w.x_min, lo), std::max(w.x_max, hi),
-          w.method + (reach->itself ? "+wear_asymptote" : "+wear_stand_in"), w.expected_half_width};
+  std::optional<Interval> sliding;  // a load without a limit may wear in gross slip
+  if (!reach || !reach->every_load) sliding = sliding_reach(scene, profile, w);
+  if (!reach && !sliding) return w;
+  WindowChoice out = w;
+  if (reach) {
+    const auto [lo, hi] = reach->covered();
+    out.x_min = std::min(out.x_min, lo), out.x_max = std::max(out.x_max, hi);
+    out.method += reach->itself ? "+wear_asymptote" : "+wear_stand_in";
+  }
+  if (sliding && (sliding->first < out.x_min || sliding->second > out.x_max)) {
+    out.x_min = std::min(out.x_min, sliding->first), out.x_max = std::max(out.x_max, sliding->second);
+    out.method += "+worn_flat";
+  }
+  return out;
 }
 
 // The wear run's stick zones are whole cells: those the first cycle's corrective contact loads, which it never wears

@@ -84,6 +84,7 @@ Setup make_setup(const Scene& scene);
 struct WornReach {
   std::pair<double, double> extent;  // m
   bool itself = true;
+  bool every_load = true;  // every stand-in has a limit (else a load may wear without one, as in gross slip)
   // The window that covers it as the default window does: the extent with half its half-width to spare each side.
   std::pair<double, double> covered() const {
     const double c = 0.5 * (extent.first + extent.second), hw = 0.5 * (extent.second - extent.first);

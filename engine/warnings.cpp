@@ -68,6 +68,13 @@ std::string resolution_advice(const NormalResult& n, double width, int min_cells
                ? fmt::format("about {}, more than grid.cells allows ({})", cells_advice(needed), kMaxCells)
                : fmt::format("about {}", cells_advice(needed));
   };
+  // A window fretwear widened to hold the worn contact (engine/setup.cpp: its limit's reach, or gross slip's flat)
+  // cannot be narrowed without stopping the run at its end.
+  const std::string& method = n.window.method;
+  if (method.find("+wear_") != std::string::npos || method.find("+worn_flat") != std::string::npos)
+    return fmt::format("the window is fretwear's, widened to hold the worn contact ({} m), so a narrower one would "
+                       "stop the wear run at its end: give more grid.cells ({})",
+                       interval_text(n.grid.x_min, n.grid.x_max), cells(cells_here));
   if (W >= kNarrowerWindowGain * (right - left)) {
     const double spans = n.grid.n * width / (right - left);  // cells over the feature in that window
     if (spans >= min_cells)

@@ -47,8 +47,9 @@ void WearContact::check_window(const std::vector<double>& p) const {
       model_.window.method == "given"
           ? std::string("widen grid.window")
           : fmt::format("this window, [{:.6g}, {:.6g}] m, is fretwear's choice, sized by the worn contact's limit "
-                        "where the cycle has one (not in gross slip, nor where a bulk stress dwarfs the friction): "
-                        "give grid.window wider than it",
+                        "where the cycle has one, and in gross slip by the flat it wears at the first cycle's rate "
+                        "(not where a bulk stress dwarfs the friction, nor where the wear speeds up as it goes): give "
+                        "grid.window wider than it",
                         grid.x_min, grid.x_max)));
 }
 

@@ -383,8 +383,9 @@ TEST_CASE("a worn contact that outgrows the window fretwear chose says whose win
   CAPTURE(chosen.all());
   CHECK(chosen.status == 2);
   CHECK(chosen.err.find("grid.window: the worn contact reaches the window's right end") != std::string::npos);
-  CHECK(chosen.err.find("is fretwear's choice, sized by the worn contact's limit where the cycle has one (not in "
-                        "gross slip, nor where a bulk stress dwarfs the friction): give grid.window wider than it") !=
+  CHECK(chosen.err.find("is fretwear's choice, sized by the worn contact's limit where the cycle has one, and in "
+                        "gross slip by the flat it wears at the first cycle's rate (not where a bulk stress dwarfs "
+                        "the friction, nor where the wear speeds up as it goes): give grid.window wider than it") !=
         std::string::npos);
   CHECK(snapshot(scratch.path).size() == 1);
   write_file(scratch.path / "s.json", R"({"name": "s", "materials": {"both": {"E": 193e9, "nu": 0.364}},

@@ -290,9 +290,12 @@ void estimate_stress(const Scene& scene, const NormalResult& normal, Preflight& 
 std::vector<std::string> physics_problems(const Scene& scene, Preflight* preflight) {
   std::vector<std::string> problems;
   try {
-    const Setup setup = make_setup(scene);
     SolvedStages solved;
     auto t0 = std::chrono::steady_clock::now();
+    solved.setup = std::make_shared<const Setup>(make_setup(scene));
+    const Setup& setup = *solved.setup;
+    solved.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    t0 = std::chrono::steady_clock::now();
     const auto normal = std::make_shared<const NormalResult>(solve_normal(scene, setup.model));
     solved.normal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     solved.normal = normal;

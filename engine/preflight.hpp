@@ -14,6 +14,7 @@
 #include "engine/folder.hpp"
 #include "engine/normal_stage.hpp"
 #include "engine/scene.hpp"
+#include "engine/setup.hpp"
 #include "engine/warnings.hpp"
 
 namespace fretwear {
@@ -29,9 +30,12 @@ inline constexpr double kWarnWearPerCycle = 0.1;
 // Wear runs estimated to take longer than this (s) are refused, naming the stepper and what to use instead.
 inline constexpr double kMaxRunSeconds = 86400.0;
 
-// The stages the checks solved: the normal contact, and the first cycle where the route or the wear stage needs it,
-// with their wall times (s). Simulation::run takes them for the same scene rather than solve them again.
+// What the checks made and solved: the setup (the window, whose choice may solve trials, and the model on it), the
+// normal contact, and the first cycle where the route or the wear stage needs it, with their wall times (s).
+// Simulation::run takes them for the same scene rather than make and solve them again.
 struct SolvedStages {
+  std::shared_ptr<const Setup> setup;
+  double setup_seconds = 0.0;
   std::shared_ptr<const NormalResult> normal;
   double normal_seconds = 0.0;
   std::shared_ptr<const CycleStage> cycle;  // null where the checks did not solve it

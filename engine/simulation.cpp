@@ -41,7 +41,11 @@ RunResult Simulation::run(const WearControl* control, const SolvedStages* solved
   double reused = 0.0;  // the time of the stages taken from `solved`, spent before this call (s)
   const auto seconds_so_far = [&] { return seconds_since(t0) + reused; };
   try {
-    const Setup setup = make_setup(scene_);
+    const bool reuse_setup = solved && solved->setup;
+    const std::shared_ptr<const Setup> made =
+        reuse_setup ? solved->setup : std::make_shared<const Setup>(make_setup(scene_));
+    if (reuse_setup) reused += solved->setup_seconds;
+    const Setup& setup = *made;
     const Model& model = setup.model;
     const StopCheck stop = control ? control->stop_now : StopCheck{};
     const bool reuse = solved && solved->normal;

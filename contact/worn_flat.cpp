@@ -9,7 +9,7 @@ namespace fretwear {
 
 Flat flat_at(const Profile& profile, double d, double h) {
   const double dx = 0.25 * h, x0 = profile.lowest_point();
-  Flat f{0.0, x0, x0};
+  Flat f{0.0, x0, x0, d};
   for (int side : {-1, 1}) {
     double x = x0, v = std::max(0.0, d - profile.gap(x0));
     for (int k = 1; v > 0.0 && k < 100000000; ++k) {

@@ -17,9 +17,10 @@ namespace fretwear {
 
 inline constexpr double kFlatMargin = 0.1;
 
-// W(d) (m²) and where g0 = d, left and right of the profile's lowest point (m).
+// W(d) (m²) and where g0 = d, left and right of the profile's lowest point (m), at the depth d above the lowest
+// point's gap (m).
 struct Flat {
-  double area = 0.0, left = 0.0, right = 0.0;
+  double area = 0.0, left = 0.0, right = 0.0, depth = 0.0;
 };
 
 // The flat at depth d (m), integrated outward from the lowest point in steps of h/4 (trapezoids).

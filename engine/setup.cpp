@@ -159,45 +159,82 @@ std::optional<WornReach> worn_reach(const Scene& scene, const Profile& profile, 
 
 namespace {
 
-// The window that holds a run wearing in gross slip, which has no limit: the flat that holds what the run wears at
-// its loads' first-cycle rates, kFlatMargin more, with U each side where each body wears in its own frame, and 20 %
-// to spare (contact/worn_flat.hpp, the same window engine/preflight.cpp advises for a given one). Each load (the
-// scene's, or each block of load.blocks in turn) is solved for one cycle on a trial grid of kTrialCells over the
-// unworn contact's window w; the loads in partial slip wear towards a limit and add nothing here. Empty when no load
-// slides. The rates are those of the unworn contact, as the preflight's; they hold because in gross slip c ∫ p s dx
-// is about c P times the stroke whatever the contact's shape.
+// The window that holds a run wearing in gross slip, which has no limit: the flat that holds what the run wears,
+// kFlatMargin more, with U each side where each body wears in its own frame, and 20 % to spare (contact/worn_flat.hpp,
+// the same window engine/preflight.cpp advises for a given one). Each load (the scene's, or each block of load.blocks)
+// is solved for one cycle on a trial grid of kTrialCells, first over the unworn contact's window w; the loads in
+// partial slip wear towards a limit and add nothing here. Empty when no load slides.
+// The first cycle's rate c ∫ p s dx is about c P times the slip travelled, which under δ is what the stick limit
+// leaves of δ; as the contact wears flat and widens its tangential compliance falls, more of δ slides, and the wear
+// speeds up (a rounded wedge at δ just past its stick limit wears several times faster by the end). So the rates are
+// taken again on the original profile cut flat at the depth that holds the area (a trial grid over the window that
+// holds it), each load at the larger of its rates, until the area grows by less than kSettled (at most kPasses).
 std::optional<Interval> sliding_reach(const Scene& scene, const Profile& profile, const WindowChoice& w) {
-  constexpr int kTrialCells = 1024;
+  constexpr int kTrialCells = 1024, kPasses = 4;
+  constexpr double kSettled = 0.05;
   // Under force control the scene is refused where Q reaches f P (the slip would not be determined), so only a load
   // under displacement control can slide.
   bool displacement = scene.blocks.empty() && scene.control == LoadControl::displacement;
   for (const LoadBlock& b : scene.blocks) displacement = displacement || b.delta.has_value();
   if (!displacement) return std::nullopt;
-  const Model trial = model_on(scene, align_to_support(profile, w.x_min, w.x_max, kTrialCells),
-                               {w.x_min, w.x_max, "trial", 0.0});
   std::vector<Scene> loads;
   if (scene.blocks.empty()) loads.push_back(scene);
   for (const LoadBlock& b : scene.blocks) loads.push_back(block_scene(scene, b));
-  double area = 0.0, U = 0.0;
-  NormalResult normal;
-  try {
-    normal = solve_normal(scene, trial);
-    for (const Scene& one : loads) {
-      const CycleStage cycle = solve_cycle(one, trial, normal);
-      if (cycle.result.regime != Regime::gross_slip) continue;
-      area += estimate_wear(one, trial, cycle, /*timed=*/false).area_rate * one.wear->cycles;
-      if (bodies_in_own_frames(one, trial, cycle)) U = std::max(U, cycle.result.sliding_amplitude);
+  std::vector<double> rate(loads.size(), 0.0);
+  double U = 0.0;
+  Interval contact{0.0, 0.0};  // the widest contact of the trials, unworn and worn flat (m)
+  // Each load's rate on the trial grid over [lo, hi], the profile cut flat at `depth` (none: the original), where
+  // it slides; U from the original. False where the worn flat's contact reaches the trial grid's end.
+  const auto take_rates = [&](double lo, double hi, std::optional<double> depth) {
+    Model trial = model_on(scene, align_to_support(profile, lo, hi, kTrialCells), {lo, hi, "trial", 0.0});
+    if (depth)
+      for (double& g : trial.g0) g = std::max(g, profile.gap(profile.lowest_point()) + *depth);
+    try {
+      const NormalResult normal = solve_normal(scene, trial);
+      if (normal.zones.empty()) return false;
+      if (!depth) contact = {normal.zones.front().left.x, normal.zones.back().right.x};
+      contact.first = std::min(contact.first, normal.zones.front().left.x);
+      contact.second = std::max(contact.second, normal.zones.back().right.x);
+      for (std::size_t k = 0; k < loads.size(); ++k) {
+        const CycleStage cycle = solve_cycle(loads[k], trial, normal);
+        if (cycle.result.regime != Regime::gross_slip) continue;
+        rate[k] = std::max(rate[k], estimate_wear(loads[k], trial, cycle, /*timed=*/false).area_rate);
+        if (!depth && bodies_in_own_frames(loads[k], trial, cycle)) U = std::max(U, cycle.result.sliding_amplitude);
+      }
+    } catch (const ConvergenceError& e) {  // on a grid the user never asked for: say which, and how to skip it
+      throw ConvergenceError(fmt::format("grid.window: sizing the default window for gross slip's worn flat on a "
+                                         "trial grid of {} cells over [{:.6g}, {:.6g}] m: {}; give grid.window to "
+                                         "skip this trial",
+                                         kTrialCells, lo, hi, e.what()));
+    } catch (const InputError&) {
+      if (!depth) throw;  // the unworn contact's window is the run's too
+      return false;
     }
-  } catch (const ConvergenceError& e) {  // on a grid the user never asked for: say which, and how to skip it
-    throw ConvergenceError(fmt::format("grid.window: sizing the default window for gross slip's worn flat on a trial "
-                                       "grid of {} cells over [{:.6g}, {:.6g}] m: {}; give grid.window to skip "
-                                       "this trial",
-                                       kTrialCells, w.x_min, w.x_max, e.what()));
+    return true;
+  };
+  const auto worn = [&] {
+    double area = 0.0;
+    for (std::size_t k = 0; k < loads.size(); ++k) area += rate[k] * loads[k].wear->cycles;
+    return (1.0 + kFlatMargin) * area;
+  };
+  take_rates(w.x_min, w.x_max, std::nullopt);
+  double area = worn();
+  if (!(area > 0.0)) return std::nullopt;
+  const double h = (w.x_max - w.x_min) / kTrialCells;
+  const auto holding = [&] { return window_holding(profile, area, h, U, contact.first, contact.second); };
+  Interval window = holding();
+  for (int pass = 1; pass < kPasses; ++pass) {
+    // The flat's contact reaches past the flat's ends (a cut wedge's past its unworn contact, by more than the 20 %):
+    // a trial grid 2.5 times the window's half-width each side of its centre holds it.
+    const double c = 0.5 * (window.first + window.second), half = 1.25 * (window.second - window.first);
+    if (!take_rates(c - half, c + half, flat_holding(profile, area, h).depth)) break;
+    const double grown = worn();
+    const bool settled = !(grown > (1.0 + kSettled) * area);
+    if (!settled) area = grown;
+    window = holding();  // and the flat's contact
+    if (settled) break;
   }
-  if (!(area > 0.0) || normal.zones.empty()) return std::nullopt;
-  const auto [lo, hi] = window_holding(profile, (1.0 + kFlatMargin) * area, trial.grid.h(), U,
-                                       normal.zones.front().left.x, normal.zones.back().right.x);
-  return Interval{lo, hi};
+  return window;
 }
 
 // The default window covers the worn contact's reach with the same margin as the contact (WornReach::covered), and

@@ -168,7 +168,8 @@ namespace {
 // leaves of δ; as the contact wears flat and widens its tangential compliance falls, more of δ slides, and the wear
 // speeds up (a rounded wedge at δ just past its stick limit wears several times faster by the end). So the rates are
 // taken again on the original profile cut flat at the depth that holds the area (a trial grid over the window that
-// holds it), each load at the larger of its rates, until the area grows by less than kSettled (at most kPasses).
+// holds it, and the run's displacement datum, the unworn contact's), each load at the larger of its rates, until the
+// area grows by less than kSettled (at most kPasses).
 std::optional<Interval> sliding_reach(const Scene& scene, const Profile& profile, const WindowChoice& w) {
   constexpr int kTrialCells = 1024, kPasses = 4;
   constexpr double kSettled = 0.05;
@@ -181,7 +182,7 @@ std::optional<Interval> sliding_reach(const Scene& scene, const Profile& profile
   if (scene.blocks.empty()) loads.push_back(scene);
   for (const LoadBlock& b : scene.blocks) loads.push_back(block_scene(scene, b));
   std::vector<double> rate(loads.size(), 0.0);
-  double U = 0.0;
+  double U = 0.0, reference_depth = 0.0;
   Interval contact{0.0, 0.0};  // the widest contact of the trials, unworn and worn flat (m)
   // Each load's rate on the trial grid over [lo, hi], the profile cut flat at `depth` (none: the original), where
   // it slides; U from the original. False where the worn flat's contact reaches the trial grid's end.
@@ -196,10 +197,15 @@ std::optional<Interval> sliding_reach(const Scene& scene, const Profile& profile
       contact.first = std::min(contact.first, normal.zones.front().left.x);
       contact.second = std::max(contact.second, normal.zones.back().right.x);
       for (std::size_t k = 0; k < loads.size(); ++k) {
-        const CycleStage cycle = solve_cycle(loads[k], trial, normal);
+        // The run keeps the unworn contact's datum (10 of its half-widths deep unless given), whose depth sets the
+        // tangential compliance, hence what of δ sticks: the flat's must not be put 10 of its own half-widths deep.
+        Scene one = loads[k];
+        if (depth && !one.reference_depth) one.reference_depth = reference_depth;
+        const CycleStage cycle = solve_cycle(one, trial, normal);
+        if (!depth) reference_depth = cycle.reference_depth;
         if (cycle.result.regime != Regime::gross_slip) continue;
-        rate[k] = std::max(rate[k], estimate_wear(loads[k], trial, cycle, /*timed=*/false).area_rate);
-        if (!depth && bodies_in_own_frames(loads[k], trial, cycle)) U = std::max(U, cycle.result.sliding_amplitude);
+        rate[k] = std::max(rate[k], estimate_wear(one, trial, cycle, /*timed=*/false).area_rate);
+        if (!depth && bodies_in_own_frames(one, trial, cycle)) U = std::max(U, cycle.result.sliding_amplitude);
       }
     } catch (const ConvergenceError& e) {  // on a grid the user never asked for: say which, and how to skip it
       throw ConvergenceError(fmt::format("grid.window: sizing the default window for gross slip's worn flat on a "

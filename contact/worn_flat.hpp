@@ -17,8 +17,8 @@ namespace fretwear {
 
 inline constexpr double kFlatMargin = 0.1;
 
-// W(d) (m²) and where g0 = d, left and right of the profile's lowest point (m), at the depth d above the lowest
-// point's gap (m).
+// W(d) (m²) and where g0 = d, left and right of the profile's lowest point (m), for the gap d (m) the profile is cut
+// flat at: the worn gap is max(g0, d).
 struct Flat {
   double area = 0.0, left = 0.0, right = 0.0, depth = 0.0;
 };

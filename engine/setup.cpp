@@ -166,7 +166,8 @@ namespace {
 // partial slip wear towards a limit and add nothing here. Empty when no load slides.
 // The first cycle's rate c ∫ p s dx is about c P times the slip travelled, which under δ is what the stick limit
 // leaves of δ; as the contact wears flat and widens its tangential compliance falls, more of δ slides, and the wear
-// speeds up (a rounded wedge at δ just past its stick limit wears several times faster by the end). So the rates are
+// speeds up (a wedge of steel on aluminium at δ = 2.34 µm, whose first cycle slides 0.96 µm each way, wore 1.9 times
+// faster on average over 1.09e6 cycles: tests/regression/regression_gross_slip_default_window.cpp). So the rates are
 // taken again on the original profile cut flat at the depth that holds the area (a trial grid over the window that
 // holds it, and the run's displacement datum, the unworn contact's), each load at the larger of its rates, until the
 // area grows by less than kSettled (at most kPasses).
@@ -184,12 +185,12 @@ std::optional<Interval> sliding_reach(const Scene& scene, const Profile& profile
   std::vector<double> rate(loads.size(), 0.0);
   double U = 0.0, reference_depth = 0.0;
   Interval contact{0.0, 0.0};  // the widest contact of the trials, unworn and worn flat (m)
-  // Each load's rate on the trial grid over [lo, hi], the profile cut flat at `depth` (none: the original), where
-  // it slides; U from the original. False where the worn flat's contact reaches the trial grid's end.
+  // Each load's rate on the trial grid over [lo, hi], where it slides, the profile cut flat at the gap `depth` (none:
+  // the original); U from the original. False where the worn flat's contact reaches the trial grid's end.
   const auto take_rates = [&](double lo, double hi, std::optional<double> depth) {
     Model trial = model_on(scene, align_to_support(profile, lo, hi, kTrialCells), {lo, hi, "trial", 0.0});
     if (depth)
-      for (double& g : trial.g0) g = std::max(g, profile.gap(profile.lowest_point()) + *depth);
+      for (double& g : trial.g0) g = std::max(g, *depth);
     try {
       const NormalResult normal = solve_normal(scene, trial);
       if (normal.zones.empty()) return false;

@@ -124,3 +124,21 @@ TEST_CASE("a gross-slip wear run's window is sized with the run's own displaceme
     "load": {"P": 3e4, "control": "displacement", "delta": 2.3393e-6}, "grid": {"cells": 128},
     "output": {"plots": false}, "effects": {"wear": {"k": 1.4151e-14, "pad_fraction": 1.0, "cycles": 1092689}}})");
 }
+
+TEST_CASE("a gross-slip wear scene too strained for half-plane elasticity is refused whatever window it gets") {
+  // A sharp wedge (8°) of steel on titanium under 100 kN/m: the mean contact strain is 0.07, past the 0.05 allowed.
+  // The window widened for the worn flat (±15 mm, a thousand times the contact) left the contact two cells, whose
+  // width is the grid's, and the strain measured over them passed; it is now measured on the unworn contact's window.
+  Scratch scratch{"strained"};
+  write_file(scratch.path / "s.json", R"({"name": "s", "materials": {"pad": {"E": 2e11, "nu": 0.3},
+    "specimen": {"E": 1.1e11, "nu": 0.34}}, "profile": {"type": "wedge", "angle_deg": 8}, "friction": 0.6,
+    "load": {"P": 1e5, "control": "displacement", "delta": 6.755e-5}, "grid": {"cells": 256},
+    "output": {"plots": false}, "effects": {"wear": {"k": 1.79e-13, "pad_fraction": 1.0, "cycles": 4275633}}})");
+  for (const char* command : {"validate", "run"}) {
+    const Outcome o = run_program(scratch.path, {command, "s.json"});
+    CAPTURE(o.all());
+    CHECK(o.status == 2);
+    CHECK(o.err.find("load.P: the mean contact pressure") != std::string::npos);
+    CHECK(!std::filesystem::exists(scratch.path / "output"));
+  }
+}

@@ -194,9 +194,8 @@ std::optional<Interval> sliding_reach(const Scene& scene, const Profile& profile
     try {
       const NormalResult normal = solve_normal(scene, trial);
       if (normal.zones.empty()) return false;
-      if (!depth) contact = {normal.zones.front().left.x, normal.zones.back().right.x};
-      contact.first = std::min(contact.first, normal.zones.front().left.x);
-      contact.second = std::max(contact.second, normal.zones.back().right.x);
+      const Interval here{normal.zones.front().left.x, normal.zones.back().right.x};
+      contact = depth ? Interval{std::min(contact.first, here.first), std::max(contact.second, here.second)} : here;
       for (std::size_t k = 0; k < loads.size(); ++k) {
         // The run keeps the unworn contact's datum (10 of its half-widths deep unless given), whose depth sets the
         // tangential compliance, hence what of δ sticks: the flat's must not be put 10 of its own half-widths deep.

@@ -15,6 +15,7 @@
 #include "engine/setup.hpp"
 #include "engine/simulation.hpp"
 #include "program.hpp"
+#include "worn_span.hpp"
 
 using namespace fretwear;
 using namespace fretwear::test;
@@ -57,13 +58,11 @@ void holds_its_worn_flat(const std::string& text, double widened = 1.5, bool coa
   const RunResult r = Simulation(scene).run();
   REQUIRE(r.wear);
   REQUIRE(r.wear->cycles_reached == scene.wear->cycles);
-  const WearRecord& last = r.wear->records.back();
   const Grid& grid = model.grid;
-  int first = -1, end = -1;
-  for (int i = 0; i < grid.n; ++i)
-    if (last.w[i] > 0.0) end = i, first = first < 0 ? i : first;
-  REQUIRE(first >= 0);
-  const double left = grid.left(first), right = grid.left(end + 1), half = 0.5 * (grid.x_max - grid.x_min);
+  const auto span = test::worn_span(grid, r.wear->records.back().w);
+  REQUIRE(span);
+  const auto [left, right] = *span;
+  const double half = 0.5 * (grid.x_max - grid.x_min);
   CAPTURE(left);
   CAPTURE(right);
   CAPTURE(grid.x_min);

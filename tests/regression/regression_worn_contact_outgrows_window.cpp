@@ -16,6 +16,7 @@
 #include "engine/setup.hpp"
 #include "engine/simulation.hpp"
 #include "scenes.hpp"
+#include "worn_span.hpp"
 
 using namespace fretwear;
 
@@ -40,13 +41,10 @@ void wears_inside_default_window(const Scene& scene) {
   const RunResult r = Simulation(scene).run();
   REQUIRE(r.wear);
   REQUIRE(r.wear->cycles_reached == kCycles);
-  const std::vector<double>& w = r.wear->records.back().w;
   const Grid& grid = model.grid;
-  int first = -1, last = -1;
-  for (int i = 0; i < grid.n; ++i)
-    if (w[i] > 0.0) last = i, first = first < 0 ? i : first;
-  REQUIRE(first >= 0);
-  const double left = grid.left(first), right = grid.left(last + 1);
+  const auto span = test::worn_span(grid, r.wear->records.back().w);
+  REQUIRE(span);
+  const auto [left, right] = *span;
   const double half = 0.5 * (grid.x_max - grid.x_min), spare = 0.2 * half;
   CAPTURE(left);
   CAPTURE(right);
